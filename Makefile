@@ -1,0 +1,28 @@
+# The two commands of the quick start, and a few more. Each installs what it lacks and builds.
+.PHONY: all deps build test demo bench lint format clean
+
+all: build
+
+deps:
+	@scripts/install_deps.sh
+
+build: deps
+	@scripts/build.sh
+
+test: build
+	@scripts/run_tests.sh
+
+demo: build
+	@scripts/demo.sh
+
+bench: build
+	@.ws/devel/lib/marble_maze/marble_maze_bench
+
+lint: deps
+	@PATH=/usr/bin:$$PATH catkin_lint --strict .
+
+format:
+	@clang-format -i $$(git ls-files '*.cpp' '*.h')
+
+clean:
+	rm -rf .ws

@@ -1,0 +1,48 @@
+// The tilting board: roll about x and pitch about y around a pivot at the centre of the floor's
+// top surface, driven by target angles or by tilt rates, within a tilt and a tilt-rate limit.
+#pragma once
+
+#include "marble_maze/geometry.h"
+#include "marble_maze/params.h"
+
+namespace marble_maze {
+
+class Board {
+ public:
+  explicit Board(const Params& params);
+
+  /// Back to the given tilt, at rest.
+  void reset(double roll, double pitch);
+  /// Drive towards target angles (clamped to the tilt limit) at up to the tilt-rate limit.
+  void setTargetTilt(double roll, double pitch);
+  /// Drive at the given rates (clamped to the tilt-rate limit) until the tilt limit stops them.
+  void setTiltRate(double roll_rate, double pitch_rate);
+  /// Moves the board over a step of h seconds and updates its angular velocity.
+  void advance(double h);
+
+  double roll() const { return roll_; }
+  double pitch() const { return pitch_; }
+  /// Rotation from the board frame to the world frame: R = Ry(pitch) Rx(roll) (REP 103, no yaw).
+  const Mat3& rotation() const { return rotation_; }
+  /// The constant angular velocity (world frame) that carried the board over the last step.
+  const Vec3& angularVelocity() const { return angular_velocity_; }
+
+  static Mat3 rotationFor(double roll, double pitch);
+
+ private:
+  enum class Drive { Target, Rate };
+
+  double clampTilt(double angle) const;
+  double clampRate(double rate) const;
+
+  double tilt_limit_;
+  double tilt_rate_limit_;  // 0 = unlimited
+  Drive drive_ = Drive::Target;
+  double target_roll_ = 0, target_pitch_ = 0;
+  double roll_rate_ = 0, pitch_rate_ = 0;
+  double roll_ = 0, pitch_ = 0;
+  Mat3 rotation_ = Mat3::Identity();
+  Vec3 angular_velocity_ = Vec3::Zero();
+};
+
+}  // namespace marble_maze

@@ -1,0 +1,61 @@
+// Collision detection between the marble (a sphere) and the tile grid: the seed's five steps,
+// plus contact normals and depths, seams that never act as edges, and a swept test for impacts
+// on the way (no tunnelling).
+#pragma once
+
+#include <vector>
+
+#include "marble_maze/geometry.h"
+#include "marble_maze/maze.h"
+
+namespace marble_maze {
+
+/// Where the tile grid is in the world at one instant: its origin O' and basis [e_x' e_y' e_z'].
+struct GridFrame {
+  Mat3 rotation = Mat3::Identity();  ///< columns are e_x', e_y', e_z' in the world
+  Vec3 origin = Vec3::Zero();        ///< world position of the grid's corner O'
+  Vec3 pivot = Vec3::Zero();         ///< world position the board turns about
+  Vec3 angular_velocity = Vec3::Zero();
+
+  /// Eq. (4): v_P' = [e_x' e_y' e_z']^-1 (v_P - v_O'); the basis is orthonormal, so ^-1 = ^T.
+  Vec3 toGrid(const Vec3& world) const { return rotation.transpose() * (world - origin); }
+  Vec3 toWorld(const Vec3& grid) const { return origin + rotation * grid; }
+  /// Velocity of the board's material point at a world position: w x (p - pivot).
+  Vec3 surfaceVelocity(const Vec3& world) const { return angular_velocity.cross(world - pivot); }
+};
+
+/// The marble touching one tile.
+struct Contact {
+  Vec3 normal;            ///< world, unit, from the tile towards the marble's centre
+  Vec3 point;             ///< world, the closest point of the tile
+  Vec3 surface_velocity;  ///< world, velocity of the board at `point` (v_b of eq. (1))
+  double depth = 0;       ///< radius minus distance: > 0 when the marble overlaps the tile
+  Index3 tile = Index3::Zero();
+};
+
+/// Every tile within radius + margin of the marble's centre, one contact per surface direction
+/// (a floor of many tiles gives one contact). A tile adds no contact through a face it shares
+/// with a solid neighbour: there the neighbour's own face is the surface, so seams never act as
+/// edges. The cost depends on the marble's size, not on the maze's.
+void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, double radius,
+                  double margin, std::vector<Contact>* contacts);
+
+/// The first impact of a sphere moving from `centre` by `displacement` (world), or none.
+struct SweepHit {
+  double fraction = 1;  ///< of the displacement, 0..1
+  Contact contact;      ///< at the moment of impact
+};
+
+/// Sweeps the sphere along a straight path and returns the first tile it hits while approaching
+/// it; tiles already within radius + margin at the start are left to findContacts. The path is
+/// walked in pieces no longer than the radius, so the cost grows with its length, never with the
+/// maze, and no wall is skipped at any speed.
+bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,
+                 const Vec3& displacement, double radius, double margin, SweepHit* hit);
+
+/// Time of impact (0..1) of a sphere moving from o by d against a box, both in one frame, when it
+/// starts outside the box grown by the radius; `point` gets the touched point of the box.
+bool sphereBoxImpact(const Vec3& o, const Vec3& d, double radius, const Box& box, double* time,
+                     Vec3* point);
+
+}  // namespace marble_maze

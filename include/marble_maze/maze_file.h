@@ -1,0 +1,41 @@
+// Loading a scene (a maze and its physics) from a YAML maze file or from the mazes built in.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "marble_maze/maze.h"
+#include "marble_maze/params.h"
+
+namespace marble_maze {
+
+/// A maze and the physics it needs: the maze file's `physics:` section applied over defaults.
+struct Scene {
+  Maze maze;
+  Params params;
+};
+
+/// A malformed maze file. what() reads "SOURCE:LINE:COLUMN: message" (1-based line and column).
+struct MazeFileError : std::runtime_error {
+  MazeFileError(const std::string& source, int line, int column, const std::string& message);
+  std::string source;
+  int line;
+  int column;
+  std::string message;  ///< without the location prefix
+};
+
+/// Parses maze-file text. `source` names it in error messages (a path or "<embedded:NAME>").
+Scene parseScene(const std::string& text, const std::string& source,
+                 const Params& defaults = Params());
+
+/// Reads and parses a maze file; an unreadable file is a MazeFileError at line 0.
+Scene loadSceneFile(const std::string& path, const Params& defaults = Params());
+
+/// The names of the mazes built into the program ("classic" first: the default).
+std::vector<std::string> embeddedSceneNames();
+
+/// A built-in maze by name, or a file when `name_or_path` names no built-in maze.
+Scene loadScene(const std::string& name_or_path, const Params& defaults = Params());
+
+}  // namespace marble_maze

@@ -1,0 +1,79 @@
+// Every scene and physics value, with one table of keys shared by maze files, the runner's
+// --set KEY=VALUE and the ROS node's private parameters.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "marble_maze/geometry.h"
+
+namespace marble_maze {
+
+/// The contact model. Smooth is the seed's frictionless sliding sphere; Rolling is a solid sphere
+/// (inertia 2/5 m r^2) with Coulomb friction, which slips and then rolls.
+enum class Model { Smooth, Rolling };
+
+/// How velocity and position advance over a step (see integrator.h).
+enum class Integrator { SemiImplicitEuler };
+
+struct Params {
+  // Marble.
+  double marble_radius = 0.006;    ///< m (a 12 mm steel ball)
+  double marble_density = 7850.0;  ///< kg/m^3 (steel)
+
+  // Physics model; a feature at zero costs nothing in the step.
+  Model model = Model::Rolling;
+  double gravity = 9.81;            ///< m/s^2, along -z of the world
+  double restitution = 0.5;         ///< coefficient e of eq. (1), 0..1
+  double bounce_threshold = 0.02;   ///< m/s: slower approaches are contacts, not bounces
+  double friction = 0.3;            ///< Coulomb coefficient (rolling model)
+  double rolling_resistance = 0.0;  ///< dimensionless coefficient; 0 switches it off
+  double drag_coefficient = 0.0;    ///< sphere drag coefficient C_d; 0 switches air drag off
+  double air_density = 1.204;       ///< kg/m^3
+
+  // Time stepping.
+  double step = 0.001;  ///< s, the fixed step of Simulation::step()
+  int substeps = 1;     ///< substeps per step
+  Integrator integrator = Integrator::SemiImplicitEuler;
+
+  // Board.
+  double tilt_limit = 0.17453292519943295;  ///< rad (10 degrees): |roll|, |pitch| never exceed it
+  double tilt_rate_limit = 0.0;             ///< rad/s, 0 = unlimited
+  double initial_roll = 0.0;                ///< rad
+  double initial_pitch = 0.0;               ///< rad
+
+  // Start state; without start_position the marble starts on the maze's start cell.
+  bool has_start_position = false;
+  Vec3 start_position = Vec3::Zero();  ///< m, board frame
+  Vec3 start_velocity = Vec3::Zero();  ///< m/s, world frame
+
+  double marbleMass() const;
+  double marbleInertia() const;  ///< about any axis through the centre
+};
+
+/// A bad key or value; the message names the key and what was expected.
+struct ParamError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// One settable key: its name, unit and one line of help.
+struct ParamInfo {
+  std::string key;
+  std::string unit;
+  std::string help;
+};
+
+/// Every key, in the order the help lists them.
+const std::vector<ParamInfo>& paramInfos();
+
+/// Sets one key from text ("0.7", "rolling", "0.1,0,0.006"); throws ParamError naming the key.
+void setParam(Params& params, const std::string& key, const std::string& value);
+
+/// The key's current value as text, in the form setParam accepts.
+std::string getParam(const Params& params, const std::string& key);
+
+/// Checks the values together (ranges, step against threshold); throws ParamError naming the key.
+void validate(const Params& params);
+
+}  // namespace marble_maze

@@ -1,0 +1,89 @@
+// The world: a marble on a tilting tile-grid board, advanced in fixed steps.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "marble_maze/board.h"
+#include "marble_maze/collision.h"
+#include "marble_maze/contact_solver.h"
+#include "marble_maze/events.h"
+#include "marble_maze/maze_file.h"
+
+namespace marble_maze {
+
+/// Free, or held where the game ended for it.
+enum class MarblePhase { Free, InHole, AtGoal, OffBoard };
+
+struct MarbleState {
+  Vec3 position = Vec3::Zero();          ///< m, world frame (centre)
+  Vec3 velocity = Vec3::Zero();          ///< m/s, world frame
+  Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world frame
+  Quat orientation = Quat::Identity();   ///< world frame
+  MarblePhase phase = MarblePhase::Free;
+  int contacts = 0;  ///< tiles touched after the last step
+};
+
+/// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical
+/// states; nothing depends on wall time, addresses or threads.
+///
+/// Frames: the world's z points up (REP 103) and gravity along -z. The board frame has its origin
+/// at the pivot (the centre of the floor's top surface), which stays at the world's origin, and
+/// turns with the board; the grid frame is the board frame moved to the grid's corner.
+class Simulation {
+ public:
+  /// Throws ParamError when the scene's parameters are inconsistent.
+  explicit Simulation(const Scene& scene);
+
+  /// The marble back to its start, at rest; the board back to its initial tilt, at rest.
+  void reset();
+  void setTargetTilt(double roll, double pitch) { board_.setTargetTilt(roll, pitch); }
+  void setTiltRate(double roll_rate, double pitch_rate) {
+    board_.setTiltRate(roll_rate, pitch_rate);
+  }
+  /// Puts the marble, free, at a board-frame position with a world-frame velocity and spin.
+  void placeMarble(const Vec3& position_in_board, const Vec3& velocity,
+                   const Vec3& angular_velocity = Vec3::Zero());
+  /// Advances one fixed step of params().step seconds (params().substeps substeps).
+  void step();
+
+  const Maze& maze() const { return maze_; }
+  const Params& params() const { return params_; }
+  const Board& board() const { return board_; }
+  const MarbleState& marble() const { return marble_; }
+  double time() const { return static_cast<double>(steps_) * params_.step; }
+  std::uint64_t steps() const { return steps_; }
+  /// The events of the last step, in order.
+  const std::vector<Event>& events() const { return events_; }
+  /// The tile grid's placement in the world now.
+  GridFrame gridFrame() const;
+  /// The marble's centre in the board frame.
+  Vec3 marbleInBoard() const;
+  /// Kinetic plus potential energy (J), potential measured from the world's z = 0.
+  double energy() const;
+  /// The marble's start position in the board frame.
+  Vec3 startInBoard() const;
+
+ private:
+  void substep(double h, double start_time);
+  void move(double h, double start_time, const Vec3& start_velocity);
+  void pushOut();
+  void respond(const std::vector<Contact>& contacts, const Vec3& reference, double time);
+  void checkFinish(double time);
+  void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);
+  Vec3 acceleration(const Vec3& velocity) const;
+
+  Maze maze_;
+  Params params_;
+  Board board_;
+  ContactSolver solver_;
+  MarbleState marble_;
+  GridFrame frame_;
+  Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame
+  std::uint64_t steps_ = 0;
+  std::vector<Event> events_;
+  std::vector<Contact> contacts_;  // reused: no allocation per step
+  std::vector<ContactOutcome> outcomes_;
+};
+
+}  // namespace marble_maze

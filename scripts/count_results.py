@@ -1,0 +1,48 @@
+"""Counts the test cases in JUnit XML result files and prints "N passed, N failed".
+
+Exits 1 when any case failed, when a test left no result (catkin writes a MISSING-*.xml then),
+or when no case ran at all. Usage: count_results.py DIR [--also-failed WHAT]
+"""
+import pathlib
+import sys
+import xml.etree.ElementTree as ET
+
+
+def count(directory):
+    passed, failed, names = 0, 0, []
+    for path in sorted(pathlib.Path(directory).rglob("*.xml")):
+        try:
+            root = ET.parse(path).getroot()
+        except ET.ParseError:
+            failed += 1
+            names.append(f"{path.name} (unreadable result file)")
+            continue
+        cases = list(root.iter("testcase"))
+        if not cases:  # a suite that produced no cases, e.g. a crashed test binary
+            if int(root.get("failures", 0)) + int(root.get("errors", 0)) > 0:
+                failed += 1
+                names.append(path.name)
+            continue
+        for case in cases:
+            if case.find("failure") is not None or case.find("error") is not None:
+                failed += 1
+                names.append(f"{case.get('classname')}.{case.get('name')}")
+            elif case.find("skipped") is None:
+                passed += 1
+    return passed, failed, names
+
+
+def main():
+    args = sys.argv[1:]
+    passed, failed, names = count(args[0] if args else ".")
+    if "--also-failed" in args:  # a step that failed before leaving results, e.g. the build
+        failed += 1
+        names.append(args[args.index("--also-failed") + 1])
+    for name in names:
+        print(f"FAILED: {name}")
+    print(f"{passed} passed, {failed} failed")
+    return 1 if failed or passed == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian packages marble_maze needs that this machine lacks (Debian 12's own ROS 1).
+set -euo pipefail
+
+packages=(
+  build-essential cmake catkin ros-core-dev ros-message-generation ros-message-runtime
+  libeigen3-dev libyaml-cpp-dev libgtest-dev googletest libbenchmark-dev
+  python3-rostest python3-rosbag catkin-lint
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "Installing ${missing[*]}"
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Runs every gtest and rostest case and ends with one line "N passed, N failed".
+# Exits non-zero when any failed or none ran.
+set -uo pipefail
+export PATH="/usr/bin:$PATH"
+cd "$(dirname "$0")/.."
+results=.ws/build/test_results
+rm -rf "$results"
+(cd .ws && catkin_make run_tests -j2) > .ws/run_tests.log 2>&1
+status=$?
+extra=()
+if [ $status -ne 0 ]; then
+  tail -n 40 .ws/run_tests.log
+  echo "catkin_make run_tests failed (exit $status); the whole log is .ws/run_tests.log"
+  extra=(--also-failed "catkin_make run_tests")
+fi
+# catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
+/usr/bin/python3 scripts/count_results.py "$results" "${extra[@]}"

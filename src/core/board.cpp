@@ -1,0 +1,78 @@
+#include "marble_maze/board.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace marble_maze {
+
+Board::Board(const Params& params)
+    : tilt_limit_(params.tilt_limit), tilt_rate_limit_(params.tilt_rate_limit) {
+  reset(params.initial_roll, params.initial_pitch);
+}
+
+Mat3 Board::rotationFor(double roll, double pitch) {
+  // Ry(pitch) * Rx(roll), multiplied out.
+  const double cr = std::cos(roll), sr = std::sin(roll);
+  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  Mat3 r;
+  r << cp, sp * sr, sp * cr,  //
+      0, cr, -sr,             //
+      -sp, cp * sr, cp * cr;
+  return r;
+}
+
+void Board::reset(double roll, double pitch) {
+  roll_ = target_roll_ = clampTilt(roll);
+  pitch_ = target_pitch_ = clampTilt(pitch);
+  roll_rate_ = pitch_rate_ = 0;
+  drive_ = Drive::Target;
+  rotation_ = rotationFor(roll_, pitch_);
+  angular_velocity_.setZero();
+}
+
+double Board::clampTilt(double angle) const {
+  return std::clamp(angle, -tilt_limit_, tilt_limit_);
+}
+
+double Board::clampRate(double rate) const {
+  return tilt_rate_limit_ > 0 ? std::clamp(rate, -tilt_rate_limit_, tilt_rate_limit_) : rate;
+}
+
+void Board::setTargetTilt(double roll, double pitch) {
+  drive_ = Drive::Target;
+  target_roll_ = clampTilt(roll);
+  target_pitch_ = clampTilt(pitch);
+}
+
+void Board::setTiltRate(double roll_rate, double pitch_rate) {
+  drive_ = Drive::Rate;
+  roll_rate_ = clampRate(roll_rate);
+  pitch_rate_ = clampRate(pitch_rate);
+}
+
+void Board::advance(double h) {
+  double new_roll = roll_, new_pitch = pitch_;
+  if (drive_ == Drive::Rate) {
+    new_roll = clampTilt(roll_ + roll_rate_ * h);
+    new_pitch = clampTilt(pitch_ + pitch_rate_ * h);
+  } else {
+    new_roll = roll_ + clampRate((target_roll_ - roll_) / h) * h;
+    new_pitch = pitch_ + clampRate((target_pitch_ - pitch_) / h) * h;
+  }
+  if (new_roll == roll_ && new_pitch == pitch_) {  // at rest: nothing to recompute
+    angular_velocity_.setZero();
+    return;
+  }
+  // The angular velocity over the step, in rad/s so that the surface velocity w x (p - pivot)
+  // is in m/s: for R = Ry(pitch) Rx(roll), w = pitch' e_y + roll' Ry(pitch) e_x, taken at
+  // mid-step.
+  const double roll_rate = (new_roll - roll_) / h, pitch_rate = (new_pitch - pitch_) / h;
+  const double mid_pitch = 0.5 * (pitch_ + new_pitch);
+  angular_velocity_ =
+      Vec3(roll_rate * std::cos(mid_pitch), pitch_rate, -roll_rate * std::sin(mid_pitch));
+  roll_ = new_roll;
+  pitch_ = new_pitch;
+  rotation_ = rotationFor(roll_, pitch_);
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,263 @@
+#include "marble_maze/collision.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace marble_maze {
+namespace {
+
+constexpr double kNone = std::numeric_limits<double>::infinity();
+
+/// The tiles that a grid-frame box [lower, upper] can touch, clamped to the grid (seed step 2).
+struct TileRange {
+  Index3 first;
+  Index3 last;
+};
+
+TileRange tileRange(const Maze& maze, const Vec3& lower, const Vec3& upper) {
+  TileRange r;
+  for (int a = 0; a < 3; ++a) {
+    r.first[a] = std::max(0, maze.axis(a).slotAt(lower[a]));
+    r.last[a] = std::min(maze.size()[a] - 1, maze.axis(a).slotAt(upper[a]));
+  }
+  return r;
+}
+
+template <typename Visit>
+void forEachSolidTile(const Maze& maze, const TileRange& r, Visit visit) {
+  for (int k = r.first.z(); k <= r.last.z(); ++k)
+    for (int j = r.first.y(); j <= r.last.y(); ++j)
+      for (int i = r.first.x(); i <= r.last.x(); ++i) {
+        const Index3 t(i, j, k);
+        if (maze.solid(t)) visit(t, maze.tileBox(t));
+      }
+}
+
+Vec3 closestPoint(const Box& box, const Vec3& p) {
+  return p.cwiseMax(box.lower).cwiseMin(box.upper);
+}
+
+/// Whether the tile's closest feature to grid point c is on the surface of the union of tiles:
+/// every axis on which c lies beyond the tile must face an empty neighbour. A face shared with a
+/// solid neighbour is inside the union; the neighbour's own face is the surface there, so the
+/// edges along a seam never produce a contact.
+bool facesOpen(const Maze& maze, const Index3& t, const Box& box, const Vec3& c) {
+  for (int a = 0; a < 3; ++a) {
+    int side = 0;
+    if (c[a] < box.lower[a]) side = -1;
+    if (c[a] > box.upper[a]) side = 1;
+    if (side == 0) continue;
+    Index3 neighbour = t;
+    neighbour[a] += side;
+    if (maze.solid(neighbour)) return false;
+  }
+  return true;
+}
+
+/// For a centre inside a tile: the open face it is nearest to, as the outward normal and the
+/// distance to that face. False when every face is shared (a tile buried in others).
+bool nearestOpenFace(const Maze& maze, const Index3& t, const Box& box, const Vec3& c, Vec3* normal,
+                     double* distance) {
+  *distance = kNone;
+  for (int a = 0; a < 3; ++a)
+    for (int side : {-1, 1}) {
+      Index3 neighbour = t;
+      neighbour[a] += side;
+      if (maze.solid(neighbour)) continue;
+      const double d = side < 0 ? c[a] - box.lower[a] : box.upper[a] - c[a];
+      if (d < *distance) {
+        *distance = d;
+        *normal = Vec3::Zero();
+        (*normal)[a] = side;
+      }
+    }
+  return *distance < kNone;
+}
+
+/// Keeps one contact per normal: coplanar tiles on either side of a seam give the same one.
+void addContact(std::vector<Contact>* contacts, const Contact& c) {
+  for (Contact& existing : *contacts)
+    if (existing.normal.dot(c.normal) > 1.0 - 1e-9) {
+      if (c.depth > existing.depth) existing = c;
+      return;
+    }
+  contacts->push_back(c);
+}
+
+/// First time t in [0, 1] at which o + t d comes within r of point s, approaching it.
+bool sphereImpact(const Vec3& o, const Vec3& d, const Vec3& s, double r, double* t) {
+  const Vec3 m = o - s;
+  const double b = m.dot(d);
+  const double c = m.squaredNorm() - r * r;
+  if (c <= 0 || b >= 0) return false;  // already touching, or moving away
+  const double a = d.squaredNorm();
+  const double disc = b * b - a * c;
+  if (disc < 0) return false;
+  *t = (-b - std::sqrt(disc)) / a;
+  return *t <= 1;
+}
+
+/// First impact of o + t d against the capsule of radius r around the segment that starts at
+/// `start` and runs `length` along `axis`; `point` gets the touched point of the segment.
+bool capsuleImpact(const Vec3& o, const Vec3& d, const Vec3& start, int axis, double length,
+                   double r, double* time, Vec3* point) {
+  *time = kNone;
+  // The side of the cylinder: distances across the axis only.
+  Vec3 m = o - start, e = d;
+  m[axis] = 0;
+  e[axis] = 0;
+  const double a = e.squaredNorm(), b = m.dot(e), c = m.squaredNorm() - r * r;
+  if (a > 0 && c > 0 && b < 0) {
+    const double disc = b * b - a * c;
+    if (disc >= 0) {
+      const double t = (-b - std::sqrt(disc)) / a;
+      const double along = o[axis] + t * d[axis] - start[axis];
+      if (t <= 1 && along >= 0 && along <= length) {
+        *time = t;
+        *point = start;
+        (*point)[axis] += along;
+      }
+    }
+  }
+  // The rounded ends.
+  for (double along : {0.0, length}) {
+    Vec3 end = start;
+    end[axis] += along;
+    double t;
+    if (sphereImpact(o, d, end, r, &t) && t < *time) {
+      *time = t;
+      *point = end;
+    }
+  }
+  return *time < kNone;
+}
+
+}  // namespace
+
+bool sphereBoxImpact(const Vec3& o, const Vec3& d, double radius, const Box& box, double* time,
+                     Vec3* point) {
+  // Where the path enters the box grown by the radius (slab test).
+  double enter = 0, leave = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = box.lower[a] - radius, hi = box.upper[a] + radius;
+    if (d[a] == 0) {
+      if (o[a] < lo || o[a] > hi) return false;
+      continue;
+    }
+    double t1 = (lo - o[a]) / d[a], t2 = (hi - o[a]) / d[a];
+    if (t1 > t2) std::swap(t1, t2);
+    enter = std::max(enter, t1);
+    leave = std::min(leave, t2);
+    if (enter > leave) return false;
+  }
+  // Beyond how many of the box's sides that point lies tells a face from an edge or a corner.
+  const Vec3 p = o + enter * d;
+  int outside[3], count = 0;
+  Vec3 corner;
+  for (int a = 0; a < 3; ++a) {
+    corner[a] = p[a] < box.lower[a] ? box.lower[a] : box.upper[a];
+    if (p[a] < box.lower[a] || p[a] > box.upper[a]) outside[count++] = a;
+  }
+  if (count == 0) return false;  // starts overlapping the box: a contact, not an impact
+  if (count == 1) {
+    *time = enter;
+    *point = closestPoint(box, p);
+    return true;
+  }
+  // On a rounded edge or corner: the capsules along the box edges that meet there.
+  *time = kNone;
+  for (int axis = 0; axis < 3; ++axis) {
+    const bool along_outside_axis = std::find(outside, outside + count, axis) != outside + count;
+    if (count == 2 && along_outside_axis) continue;  // an edge runs along the one inside axis
+    Vec3 start = corner;
+    start[axis] = box.lower[axis];
+    double t;
+    Vec3 q;
+    if (capsuleImpact(o, d, start, axis, box.upper[axis] - box.lower[axis], radius, &t, &q) &&
+        t < *time) {
+      *time = t;
+      *point = q;
+    }
+  }
+  return *time < kNone;
+}
+
+void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, double radius,
+                  double margin, std::vector<Contact>* contacts) {
+  contacts->clear();
+  const Vec3 c = frame.toGrid(centre);  // step 1: eq. (4)
+  const double reach = radius + margin;
+  const Vec3 extent = Vec3::Constant(reach);
+  // Steps 2 and 3: the index range of the marble's extent, and the tiles that exist in it.
+  forEachSolidTile(
+      maze, tileRange(maze, c - extent, c + extent), [&](const Index3& t, const Box& box) {
+        Vec3 q = closestPoint(box, c);  // step 4: the box's nearest point to the centre
+        const Vec3 offset = c - q;
+        const double distance2 = offset.squaredNorm();
+        if (distance2 >= reach * reach) return;  // step 5: no contact beyond the radius
+        if (!facesOpen(maze, t, box, c)) return;
+        Contact contact;
+        Vec3 normal;
+        if (distance2 > 0) {
+          const double distance = std::sqrt(distance2);
+          normal = offset / distance;
+          contact.depth = radius - distance;
+        } else {
+          double inside;  // the centre is in the tile: leave through its nearest open face
+          if (!nearestOpenFace(maze, t, box, c, &normal, &inside)) return;
+          q = c + normal * inside;
+          contact.depth = radius + inside;
+        }
+        contact.normal = frame.rotation * normal;
+        contact.point = frame.toWorld(q);
+        contact.surface_velocity = frame.surfaceVelocity(contact.point);
+        contact.tile = t;
+        addContact(contacts, contact);
+      });
+}
+
+bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,
+                 const Vec3& displacement, double radius, double margin, SweepHit* hit) {
+  const Vec3 o = frame.toGrid(centre);
+  const Vec3 d = frame.rotation.transpose() * displacement;
+  const double length = d.norm();
+  if (!(length > 0)) return false;
+  const double touching = (radius + margin) * (radius + margin);
+  const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
+  double best = kNone;
+  Index3 best_tile = Index3::Zero();
+  Vec3 best_point = Vec3::Zero(), best_normal = Vec3::Zero();
+  for (int piece = 0; piece < pieces; ++piece) {
+    const Vec3 a = o + d * (static_cast<double>(piece) / pieces);
+    const Vec3 b = o + d * (static_cast<double>(piece + 1) / pieces);
+    const Vec3 r = Vec3::Constant(radius);
+    const TileRange range = tileRange(maze, a.cwiseMin(b) - r, a.cwiseMax(b) + r);
+    forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
+      if ((o - closestPoint(box, o)).squaredNorm() < touching) return;  // findContacts has it
+      double time;
+      Vec3 q;
+      if (!sphereBoxImpact(o, d, radius, box, &time, &q) || time >= best) return;
+      const Vec3 c = o + d * time;
+      if (!facesOpen(maze, t, box, c)) return;  // a seam: the neighbour's face is hit instead
+      const Vec3 normal = (c - q).normalized();
+      if (normal.dot(d) >= -1e-12 * length) return;  // grazing: no impact
+      best = time;
+      best_tile = t;
+      best_point = q;
+      best_normal = normal;
+    });
+    // An impact within the pieces walked so far cannot be beaten by tiles further on.
+    if (best <= static_cast<double>(piece + 1) / pieces) break;
+  }
+  if (best == kNone) return false;
+  hit->fraction = best;
+  hit->contact.normal = frame.rotation * best_normal;
+  hit->contact.point = frame.toWorld(best_point);
+  hit->contact.surface_velocity = frame.surfaceVelocity(hit->contact.point);
+  hit->contact.depth = 0;
+  hit->contact.tile = best_tile;
+  return true;
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,111 @@
+#include "marble_maze/contact_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace marble_maze {
+namespace {
+
+// Gauss-Seidel sweeps over the contacts. One contact, or contacts at right angles as on a tile
+// grid, are solved exactly by one sweep; a few more settle edges and corners.
+constexpr int kMaxIterations = 8;
+
+/// Kinetic energy relative to the mean velocity of the touched surfaces.
+double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity,
+                      const MarbleBody& body) {
+  Vec3 surface = Vec3::Zero();
+  for (const Contact& c : contacts) surface += c.surface_velocity;
+  surface /= static_cast<double>(contacts.size());
+  return 0.5 * body.mass * (velocity - surface).squaredNorm() +
+         0.5 * body.inertia * body.angular_velocity.squaredNorm();
+}
+
+}  // namespace
+
+void ContactSolver::solve(const std::vector<Contact>& contacts, const Vec3& reference,
+                          MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+  outcomes->assign(contacts.size(), ContactOutcome());
+  if (contacts.empty()) return;
+  bool any_bounce = false;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    const double approach = -(reference - c.surface_velocity).dot(c.normal);
+    (*outcomes)[i].approach_speed = approach;
+    (*outcomes)[i].bounce = approach > params_.bounce_threshold;
+    any_bounce = any_bounce || (*outcomes)[i].bounce;
+  }
+  const MarbleBody before = *body;
+  iterate(contacts, true, body, outcomes);
+  // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
+  // would, the impacts are taken as perfectly inelastic instead, which never does.
+  if (any_bounce && contacts.size() > 1) {
+    const double energy_before = std::max(relativeEnergy(contacts, reference, before),
+                                          relativeEnergy(contacts, before.velocity, before));
+    if (relativeEnergy(contacts, body->velocity, *body) > energy_before * (1 + 1e-12)) {
+      *body = before;
+      iterate(contacts, false, body, outcomes);
+    }
+  }
+  if (params_.model == Model::Rolling && params_.rolling_resistance > 0)
+    resistRolling(contacts, *outcomes, body);
+}
+
+void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restitution,
+                            MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+  const bool rolling = params_.model == Model::Rolling && params_.friction > 0;
+  friction_impulses_.assign(contacts.size(), Vec3::Zero());
+  for (auto& o : *outcomes) o.normal_impulse = 0;
+  const double inv_mass = 1.0 / body->mass;
+  const double r = body->radius;
+  // Effective inverse mass of a sphere for a tangential impulse at its surface.
+  const double inv_tangent_mass = inv_mass + r * r / body->inertia;
+  const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    double largest_change = 0;  // of any impulse in this sweep, N s
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const Contact& c = contacts[i];
+      ContactOutcome& o = (*outcomes)[i];
+      // Eq. (1): the normal part of the velocity relative to the board's surface leaves at
+      // e times its approach speed; resting contacts leave at zero.
+      const double target = (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
+      const double normal_speed = (body->velocity - c.surface_velocity).dot(c.normal);
+      const double impulse = std::max(0.0, o.normal_impulse + (target - normal_speed) * body->mass);
+      body->velocity += (impulse - o.normal_impulse) * inv_mass * c.normal;
+      largest_change = std::max(largest_change, std::abs(impulse - o.normal_impulse));
+      o.normal_impulse = impulse;
+      if (!rolling) continue;
+      // Coulomb friction at the contact point: stop slipping, within mu times the normal impulse.
+      const Vec3 arm = -r * c.normal;
+      const Vec3 slip = body->velocity + body->angular_velocity.cross(arm) - c.surface_velocity;
+      const Vec3 tangential_slip = slip - slip.dot(c.normal) * c.normal;
+      Vec3 total = friction_impulses_[i] - tangential_slip / inv_tangent_mass;
+      const double limit = params_.friction * impulse;
+      if (total.norm() > limit) total *= limit / total.norm();
+      const Vec3 change = total - friction_impulses_[i];
+      friction_impulses_[i] = total;
+      body->velocity += change * inv_mass;
+      body->angular_velocity += arm.cross(change) / body->inertia;
+      largest_change = std::max(largest_change, change.norm());
+    }
+    // Converged: a further sweep would change no velocity by more than 1e-12 m/s.
+    if (largest_change * inv_mass < 1e-12) break;
+  }
+}
+
+void ContactSolver::resistRolling(const std::vector<Contact>& contacts,
+                                  const std::vector<ContactOutcome>& outcomes,
+                                  MarbleBody* body) const {
+  // A torque of c_rr * N * r against the rolling part of the spin; friction then slows the
+  // marble's travel on the next step.
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Vec3& n = contacts[i].normal;
+    Vec3 rolling_spin = body->angular_velocity - body->angular_velocity.dot(n) * n;
+    const double spin = rolling_spin.norm();
+    if (spin == 0) continue;
+    const double change =
+        params_.rolling_resistance * outcomes[i].normal_impulse * body->radius / body->inertia;
+    body->angular_velocity -= rolling_spin * (std::min(spin, change) / spin);
+  }
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,31 @@
+#include "marble_maze/maze.h"
+
+#include <algorithm>
+
+namespace marble_maze {
+
+Maze::Maze(const AxisSlots& x, const AxisSlots& y, const AxisSlots& z)
+    : axes_{x, y, z},
+      size_(x.count(), y.count(), z.count()),
+      solid_(static_cast<std::size_t>(x.count()) * y.count() * z.count(), 0) {
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k <= size_[a]; ++k) bounds_[a].push_back(axes_[a].lower(k));
+}
+
+bool Maze::isGoal(const Cell& c) const {
+  return std::find(goals_.begin(), goals_.end(), c) != goals_.end();
+}
+
+bool Maze::isHole(const Cell& c) const {
+  return c.i >= 0 && c.j >= 0 && c.i < size().x() && c.j < size().y() && !solid({c.i, c.j, 0});
+}
+
+std::vector<Maze::Cell> Maze::holes() const {
+  std::vector<Cell> result;
+  for (int j = 0; j < size().y(); ++j)
+    for (int i = 0; i < size().x(); ++i)
+      if (isHole({i, j})) result.push_back({i, j});
+  return result;
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,206 @@
+#include "marble_maze/simulation.h"
+
+#include <cmath>
+
+namespace marble_maze {
+namespace {
+
+// Contacts are looked for this far beyond the marble's surface: far below anything visible, far
+// above the rounding error of coordinates on a board a metre wide.
+constexpr double kContactMargin = 1e-9;
+// A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
+constexpr int kMaxImpactsPerSubstep = 4;
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+Simulation::Simulation(const Scene& scene)
+    : maze_(scene.maze), params_(scene.params), board_(params_), solver_(params_) {
+  validate(params_);
+  reset();
+}
+
+GridFrame Simulation::gridFrame() const {
+  GridFrame frame;
+  frame.rotation = board_.rotation();
+  frame.pivot = Vec3::Zero();
+  frame.origin = -(frame.rotation * maze_.pivot());
+  frame.angular_velocity = board_.angularVelocity();
+  return frame;
+}
+
+Vec3 Simulation::startInBoard() const {
+  if (params_.has_start_position) return params_.start_position;
+  const Maze::Cell& s = maze_.start();
+  return Vec3(maze_.axis(0).centre(s.i), maze_.axis(1).centre(s.j),
+              maze_.floorTop() + params_.marble_radius) -
+         maze_.pivot();
+}
+
+Vec3 Simulation::marbleInBoard() const {
+  return frame_.toGrid(marble_.position) - maze_.pivot();
+}
+
+void Simulation::reset() {
+  board_.reset(params_.initial_roll, params_.initial_pitch);
+  frame_ = gridFrame();
+  placeMarble(startInBoard(), params_.start_velocity);
+  events_.clear();
+}
+
+void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity,
+                             const Vec3& angular_velocity) {
+  marble_ = MarbleState();
+  marble_.position = frame_.toWorld(position_in_board + maze_.pivot());
+  marble_.velocity = velocity;
+  marble_.angular_velocity = angular_velocity;
+}
+
+double Simulation::energy() const {
+  const double m = params_.marbleMass();
+  return 0.5 * m * marble_.velocity.squaredNorm() +
+         0.5 * params_.marbleInertia() * marble_.angular_velocity.squaredNorm() +
+         m * params_.gravity * marble_.position.z();
+}
+
+void Simulation::step() {
+  events_.clear();
+  const double h = params_.step / params_.substeps;
+  for (int i = 0; i < params_.substeps; ++i) substep(h, time() + i * h);
+  ++steps_;
+}
+
+Vec3 Simulation::acceleration(const Vec3& velocity) const {
+  Vec3 a(0, 0, -params_.gravity);
+  if (params_.drag_coefficient > 0) {
+    const double r = params_.marble_radius;
+    const double area = kPi * r * r;
+    a -= (0.5 * params_.air_density * params_.drag_coefficient * area * velocity.norm() /
+          params_.marbleMass()) *
+         velocity;
+  }
+  return a;
+}
+
+void Simulation::substep(double h, double start_time) {
+  board_.advance(h);
+  frame_ = gridFrame();
+  if (marble_.phase != MarblePhase::Free) {  // a finished marble rides along with the board
+    marble_.position = frame_.toWorld(held_in_grid_);
+    marble_.velocity = frame_.surfaceVelocity(marble_.position);
+    return;
+  }
+  // Contacts at the start, against the board's new pose.
+  findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin, &contacts_);
+  marble_.contacts = static_cast<int>(contacts_.size());
+  pushOut();
+  // Forces: semi-implicit Euler, the new velocity moves the marble.
+  const Vec3 start_velocity = marble_.velocity;
+  marble_.velocity += acceleration(marble_.velocity) * h;
+  // Impacts and their restitution are decided by the approach before this substep's forces, so
+  // that gravity pressing a resting marble down is never bounced.
+  respond(contacts_, start_velocity, start_time);
+  move(h, start_time, start_velocity);
+  if (params_.model == Model::Rolling) {
+    const double angle = marble_.angular_velocity.norm() * h;
+    if (angle > 0)
+      marble_.orientation = (Quat(Eigen::AngleAxisd(angle, marble_.angular_velocity.normalized())) *
+                             marble_.orientation)
+                                .normalized();
+  }
+  checkFinish(start_time + h);
+}
+
+void Simulation::pushOut() {
+  // The board turning into the marble, or rounding, can leave it overlapping a tile: move it out
+  // along the contact normals, without touching its velocity.
+  Vec3 moved = Vec3::Zero();
+  for (const Contact& c : contacts_) {
+    const double depth = c.depth - moved.dot(c.normal);
+    if (depth <= 0) continue;
+    marble_.position += depth * c.normal;
+    moved += depth * c.normal;
+  }
+}
+
+void Simulation::respond(const std::vector<Contact>& contacts, const Vec3& reference, double time) {
+  MarbleBody body;
+  body.velocity = marble_.velocity;
+  body.angular_velocity = marble_.angular_velocity;
+  body.mass = params_.marbleMass();
+  body.inertia = params_.marbleInertia();
+  body.radius = params_.marble_radius;
+  solver_.solve(contacts, reference, &body, &outcomes_);
+  marble_.velocity = body.velocity;
+  marble_.angular_velocity = body.angular_velocity;
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    if (outcomes_[i].bounce)
+      events_.push_back(
+          {time, EventKind::Collision, contacts[i].tile, outcomes_[i].approach_speed});
+}
+
+void Simulation::move(double h, double start_time, const Vec3& start_velocity) {
+  // Semi-implicit Euler moves the marble by h times its new velocity, which is its velocity at
+  // mid-substep: over the substep it follows the parabola of the constant acceleration
+  // change / h, so an impact at fraction s meets it at v + (s - 1/2) change.
+  Vec3 change = marble_.velocity - start_velocity;
+  Vec3 chord = marble_.velocity;  // mean velocity over what is left of the substep
+  double s = 0;
+  for (int impact = 0; impact < kMaxImpactsPerSubstep; ++impact) {
+    const Vec3 path = chord * ((1 - s) * h);
+    SweepHit hit;
+    if (!sweepSphere(maze_, frame_, marble_.position, path, params_.marble_radius, kContactMargin,
+                     &hit)) {
+      marble_.position += path;
+      return;
+    }
+    marble_.position += path * hit.fraction;
+    s += (1 - s) * hit.fraction;
+    const Vec3 at_impact = marble_.velocity + (s - 0.5) * change;
+    findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin,
+                 &contacts_);
+    bool found = false;
+    for (const Contact& c : contacts_) found = found || c.normal.dot(hit.contact.normal) > 1 - 1e-9;
+    if (!found) contacts_.push_back(hit.contact);
+    marble_.velocity = at_impact;
+    respond(contacts_, at_impact, start_time + s * h);
+    // A contact that holds the marble (no bounce) takes up the acceleration into it for the
+    // rest of the substep, as a resting contact does.
+    for (std::size_t i = 0; i < contacts_.size(); ++i) {
+      const double into = change.dot(contacts_[i].normal);
+      if (!outcomes_[i].bounce && outcomes_[i].normal_impulse > 0 && into < 0)
+        change -= into * contacts_[i].normal;
+    }
+    const Vec3 after = marble_.velocity;
+    marble_.velocity = after + (0.5 - s) * change;
+    chord = after + (0.5 * (1 - s)) * change;
+  }
+}
+
+void Simulation::checkFinish(double time) {
+  const Vec3 p = frame_.toGrid(marble_.position);
+  const double r = params_.marble_radius;
+  const Maze::Cell cell = maze_.cellAt(p);
+  const Index3 floor_tile(cell.i, cell.j, 0);
+  if (!marble_.position.allFinite()) {
+    hold(MarblePhase::OffBoard, EventKind::OffBoard, floor_tile, time);
+  } else if (p.z() < maze_.floorTop() - r) {  // wholly below the playing surface
+    if (maze_.isHole(cell))
+      hold(MarblePhase::InHole, EventKind::Hole, floor_tile, time);
+    else
+      hold(MarblePhase::OffBoard, EventKind::OffBoard, floor_tile, time);
+  } else if (maze_.isGoal(cell) && p.z() < maze_.floorTop() + 2 * r) {
+    hold(MarblePhase::AtGoal, EventKind::Goal, floor_tile, time);
+  }
+}
+
+void Simulation::hold(MarblePhase phase, EventKind kind, const Index3& tile, double time) {
+  events_.push_back({time, kind, tile, marble_.velocity.norm()});
+  marble_.phase = phase;
+  if (!marble_.position.allFinite()) marble_.position = frame_.toWorld(maze_.pivot());
+  held_in_grid_ = frame_.toGrid(marble_.position);
+  marble_.velocity = frame_.surfaceVelocity(marble_.position);
+  marble_.angular_velocity.setZero();
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,70 @@
+#include "marble_maze/tilt_schedule.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace marble_maze {
+namespace {
+
+bool parseNumber(const std::string& text, double* value) {
+  std::istringstream in(text);
+  in >> *value;
+  return !in.fail() && (in >> std::ws).eof() && std::isfinite(*value);
+}
+
+}  // namespace
+
+TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& source) {
+  TiltSchedule schedule;
+  std::istringstream in(text);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+    const auto error = [&](const std::string& message) {
+      return std::runtime_error(source + ":" + std::to_string(number) + ": " + message);
+    };
+    std::vector<std::string> fields;
+    std::istringstream row(line);
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    Point p{};
+    const bool numeric = fields.size() == 3 && parseNumber(fields[0], &p.time) &&
+                         parseNumber(fields[1], &p.roll) && parseNumber(fields[2], &p.pitch);
+    if (!numeric) {
+      if (schedule.points_.empty() && fields.size() == 3 && !parseNumber(fields[0], &p.time))
+        continue;  // the header row
+      throw error("expected three numbers t,roll,pitch (s, rad, rad), got '" + line + "'");
+    }
+    if (!schedule.points_.empty() && p.time <= schedule.points_.back().time)
+      throw error("times must increase, got " + fields[0] + " after " +
+                  std::to_string(schedule.points_.back().time));
+    schedule.points_.push_back(p);
+  }
+  if (schedule.points_.empty()) throw std::runtime_error(source + ": no rows t,roll,pitch");
+  return schedule;
+}
+
+TiltSchedule TiltSchedule::load(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error(path + ": cannot read file");
+  std::stringstream text;
+  text << file.rdbuf();
+  return parse(text.str(), path);
+}
+
+TiltSchedule::Point TiltSchedule::at(double time) const {
+  if (points_.empty()) return {time, 0, 0};
+  if (time <= points_.front().time) return {time, points_.front().roll, points_.front().pitch};
+  for (std::size_t i = 1; i < points_.size(); ++i) {
+    const Point& a = points_[i - 1];
+    const Point& b = points_[i];
+    if (time <= b.time) {
+      const double f = (time - a.time) / (b.time - a.time);
+      return {time, a.roll + f * (b.roll - a.roll), a.pitch + f * (b.pitch - a.pitch)};
+    }
+  }
+  return {time, points_.back().roll, points_.back().pitch};
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,249 @@
+// simulate: the headless runner. Runs the physics core without ROS on a maze, under a constant
+// tilt or a tilt program, and writes the trajectory as CSV and the events.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "marble_maze/maze_file.h"
+#include "marble_maze/simulation.h"
+#include "marble_maze/tilt_schedule.h"
+
+namespace mm = marble_maze;
+
+namespace {
+
+/// A wrong flag or value: exit code 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Options {
+  std::string maze = "classic";
+  mm::TiltSchedule tilt{0.0, 0.0};
+  std::vector<std::pair<std::string, std::string>> sets;
+  double duration = 5.0;
+  std::string out;     // trajectory CSV, "-" for standard output
+  std::string events;  // events CSV
+  int every = 1;
+  bool quiet = false;
+};
+
+void printHelp() {
+  std::cout <<
+      R"(Usage: simulate [OPTION]...
+Runs the marble_maze physics without ROS and reports what happened.
+
+  --maze NAME|FILE     a built-in maze (classic, prototype) or a maze file; default classic
+  --tilt ROLL,PITCH    constant board tilt in radians (REP 103: roll about x, pitch about y);
+                       default 0,0
+  --tilt-csv FILE      tilt program: CSV rows t,roll,pitch (s, rad, rad), linear in between
+  --set KEY=VALUE      override a scene or physics value (repeatable); keys below
+  --duration SECONDS   simulated time to run; default 5
+  --out FILE           write the trajectory as CSV ('-' for standard output)
+  --events FILE        write the events as CSV
+  --every N            write every Nth step to the trajectory; default 1
+  --quiet              no summary on standard output
+  --help               this text
+
+The board starts at the tilt program's first value unless initial_roll or initial_pitch is set.
+
+Trajectory columns (world frame, SI units): t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase
+  phase: free, in_hole, at_goal or off_board
+Event columns: t,kind,i,j,k,speed   kind: collision, hole, goal or off_board; i,j,k the tile
+
+Keys for --set (and for a maze file's physics section):
+)";
+  for (const auto& info : mm::paramInfos()) {
+    const std::string name = info.key + (info.unit.empty() ? "" : " [" + info.unit + "]");
+    std::printf("  %-26s %s (default %s)\n", name.c_str(), info.help.c_str(),
+                mm::getParam(mm::Params(), info.key).c_str());
+  }
+  std::cout << "\nExit status: 0 done, 2 a wrong flag, value or maze file, 1 anything else.\n";
+}
+
+double parseDouble(const std::string& flag, const std::string& text) {
+  std::istringstream in(text);
+  double value;
+  in >> value;
+  if (in.fail() || !(in >> std::ws).eof())
+    throw UsageError(flag + ": expected a number, got '" + text + "'");
+  return value;
+}
+
+Options parseOptions(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--help" || flag == "-h") {
+      printHelp();
+      std::exit(0);
+    }
+    if (flag == "--quiet") {
+      o.quiet = true;
+      continue;
+    }
+    if (i + 1 >= argc)
+      throw UsageError(flag +
+                       (flag.rfind("--", 0) == 0 ? ": needs a value" : ": unknown argument"));
+    const std::string value = argv[++i];
+    if (flag == "--maze") {
+      o.maze = value;
+    } else if (flag == "--tilt") {
+      const auto comma = value.find(',');
+      if (comma == std::string::npos)
+        throw UsageError("--tilt: expected ROLL,PITCH, got '" + value + "'");
+      o.tilt = mm::TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
+                                parseDouble("--tilt", value.substr(comma + 1)));
+    } else if (flag == "--tilt-csv") {
+      try {
+        o.tilt = mm::TiltSchedule::load(value);
+      } catch (const std::runtime_error& e) {
+        throw UsageError(std::string("--tilt-csv: ") + e.what());
+      }
+    } else if (flag == "--set") {
+      const auto eq = value.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw UsageError("--set: expected KEY=VALUE, got '" + value + "'");
+      o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
+    } else if (flag == "--duration") {
+      o.duration = parseDouble(flag, value);
+      if (!(o.duration >= 0 && o.duration <= 1e6))
+        throw UsageError("--duration: expected 0..1e6 seconds, got '" + value + "'");
+    } else if (flag == "--out") {
+      o.out = value;
+    } else if (flag == "--events") {
+      o.events = value;
+    } else if (flag == "--every") {
+      const double n = parseDouble(flag, value);
+      if (n < 1 || n != static_cast<int>(n))
+        throw UsageError("--every: expected a whole number >= 1, got '" + value + "'");
+      o.every = static_cast<int>(n);
+    } else {
+      throw UsageError("unknown option '" + flag + "' (see simulate --help)");
+    }
+  }
+  return o;
+}
+
+const char* phaseName(mm::MarblePhase phase) {
+  switch (phase) {
+    case mm::MarblePhase::Free:
+      return "free";
+    case mm::MarblePhase::InHole:
+      return "in_hole";
+    case mm::MarblePhase::AtGoal:
+      return "at_goal";
+    case mm::MarblePhase::OffBoard:
+      return "off_board";
+  }
+  return "unknown";
+}
+
+/// Opens FILE for writing, or standard output for "-"; null when no file was asked for.
+std::ostream* openOutput(const std::string& path, std::unique_ptr<std::ofstream>* holder) {
+  if (path.empty()) return nullptr;
+  if (path == "-") return &std::cout;
+  holder->reset(new std::ofstream(path));
+  if (!**holder) throw UsageError("cannot write '" + path + "'");
+  return holder->get();
+}
+
+void writeRow(std::ostream& out, const mm::Simulation& sim) {
+  const mm::MarbleState& m = sim.marble();
+  char row[512];
+  std::snprintf(
+      row, sizeof row, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%s\n",
+      sim.time(), m.position.x(), m.position.y(), m.position.z(), m.velocity.x(), m.velocity.y(),
+      m.velocity.z(), m.angular_velocity.x(), m.angular_velocity.y(), m.angular_velocity.z(),
+      sim.board().roll(), sim.board().pitch(), m.contacts, phaseName(m.phase));
+  out << row;
+}
+
+std::string describe(const mm::Event& e) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%.6f,%s,%d,%d,%d,%.6g", e.time, mm::toString(e.kind).c_str(),
+                e.tile.x(), e.tile.y(), e.tile.z(), e.speed);
+  return text;
+}
+
+int run(const Options& o) {
+  mm::Params defaults;
+  // The board starts where the tilt program starts, so a constant tilt is an incline from t = 0.
+  defaults.initial_roll = o.tilt.at(0).roll;
+  defaults.initial_pitch = o.tilt.at(0).pitch;
+  mm::Scene scene;
+  try {
+    scene = mm::loadScene(o.maze, defaults);
+    for (const auto& [key, value] : o.sets) mm::setParam(scene.params, key, value);
+  } catch (const mm::MazeFileError& e) {
+    throw UsageError(e.what());
+  } catch (const mm::ParamError& e) {
+    throw UsageError(std::string("--set ") + e.what());
+  }
+  std::unique_ptr<mm::Simulation> sim;
+  try {
+    sim = std::make_unique<mm::Simulation>(scene);
+  } catch (const mm::ParamError& e) {
+    throw UsageError(e.what());
+  }
+  std::unique_ptr<std::ofstream> out_file, events_file;
+  std::ostream* out = openOutput(o.out, &out_file);
+  std::ostream* events = openOutput(o.events, &events_file);
+  if (out) {
+    *out << "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
+    writeRow(*out, *sim);
+  }
+  if (events) *events << "t,kind,i,j,k,speed\n";
+  const auto steps = static_cast<std::uint64_t>(o.duration / scene.params.step + 0.5);
+  std::vector<mm::Event> all_events;
+  for (std::uint64_t n = 1; n <= steps; ++n) {
+    const mm::TiltSchedule::Point tilt = o.tilt.at(static_cast<double>(n) * scene.params.step);
+    sim->setTargetTilt(tilt.roll, tilt.pitch);
+    sim->step();
+    for (const mm::Event& e : sim->events()) {
+      all_events.push_back(e);
+      if (events) *events << describe(e) << '\n';
+    }
+    if (out && (n % o.every == 0 || n == steps)) writeRow(*out, *sim);
+  }
+  if (!o.quiet) {
+    std::ostream& s = (o.out == "-") ? std::cerr : std::cout;
+    const mm::MarbleState& m = sim->marble();
+    const mm::Vec3 b = sim->marbleInBoard();
+    s << "maze " << sim->maze().name() << ": " << sim->maze().size().x() << " x "
+      << sim->maze().size().y() << " x " << sim->maze().size().z() << " tiles, model "
+      << mm::getParam(scene.params, "model") << ", step " << scene.params.step << " s x "
+      << scene.params.substeps << "\n";
+    int collisions = 0;
+    for (const mm::Event& e : all_events) {
+      if (e.kind == mm::EventKind::Collision) {
+        ++collisions;
+        continue;
+      }
+      s << "  t=" << e.time << " s: " << mm::toString(e.kind) << " at tile (" << e.tile.x() << ", "
+        << e.tile.y() << ", " << e.tile.z() << ")\n";
+    }
+    s << "ran " << steps << " steps (" << sim->time() << " s): " << collisions
+      << " collisions; marble " << phaseName(m.phase) << " at board (" << b.x() << ", " << b.y()
+      << ", " << b.z() << ") m, speed " << m.velocity.norm() << " m/s\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parseOptions(argc, argv));
+  } catch (const UsageError& e) {
+    std::cerr << "simulate: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "simulate: " << e.what() << "\n";
+    return 1;
+  }
+}

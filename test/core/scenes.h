@@ -1,0 +1,37 @@
+// Small scenes built in code for the physics tests.
+#pragma once
+
+#include "marble_maze/maze_file.h"
+
+namespace marble_maze {
+namespace test {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A grid with the given slots, the floor slab (layer 0) solid everywhere, nothing else.
+inline Maze floorMaze(const AxisSlots& x, const AxisSlots& y, const AxisSlots& z) {
+  Maze maze(x, y, z);
+  for (int j = 0; j < y.count(); ++j)
+    for (int i = 0; i < x.count(); ++i) maze.setSolid({i, j, 0}, true);
+  maze.setStart({x.count() / 2, y.count() / 2});
+  maze.setName("test");
+  return maze;
+}
+
+/// A flat floor of uniform square tiles, one layer deep.
+inline Scene flatFloor(int nx, int ny, double tile, const Params& params = Params()) {
+  return {floorMaze(AxisSlots::uniform(tile, nx), AxisSlots::uniform(tile, ny),
+                    AxisSlots::uniform(0.005, 2)),
+          params};
+}
+
+/// Params for a marble placed by hand (board frame) at rest.
+inline Params placed(Params p, const Vec3& position, const Vec3& velocity = Vec3::Zero()) {
+  p.has_start_position = true;
+  p.start_position = position;
+  p.start_velocity = velocity;
+  return p;
+}
+
+}  // namespace test
+}  // namespace marble_maze

@@ -1,0 +1,163 @@
+// Collision detection against hand-worked geometry: normals and depths of faces, edges and
+// corners, seams, large marbles, and the swept test.
+#include <gtest/gtest.h>
+
+#include "marble_maze/collision.h"
+#include "scenes.h"
+
+namespace marble_maze {
+namespace {
+
+constexpr double kTol = 1e-12;
+
+/// A uniform 1 cm grid, 10 x 10 x 3, with the given solid tiles.
+Maze grid(std::initializer_list<Index3> solid) {
+  Maze maze(AxisSlots::uniform(0.01, 10), AxisSlots::uniform(0.01, 10),
+            AxisSlots::uniform(0.01, 3));
+  for (const Index3& t : solid) maze.setSolid(t, true);
+  return maze;
+}
+
+std::vector<Contact> contactsAt(const Maze& maze, const Vec3& centre, double radius) {
+  std::vector<Contact> contacts;
+  findContacts(maze, GridFrame(), centre, radius, 1e-9, &contacts);
+  return contacts;
+}
+
+TEST(FindContacts, FaceContactHasTheFaceNormalAndDepth) {
+  const Maze maze = grid({{5, 5, 0}});
+  const auto contacts = contactsAt(maze, {0.055, 0.055, 0.014}, 0.005);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR((contacts[0].normal - Vec3(0, 0, 1)).norm(), 0, kTol);
+  EXPECT_NEAR(contacts[0].depth, 0.001, kTol);
+  EXPECT_NEAR((contacts[0].point - Vec3(0.055, 0.055, 0.01)).norm(), 0, kTol);
+  EXPECT_EQ(contacts[0].tile, Index3(5, 5, 0));
+}
+
+TEST(FindContacts, EdgeAndCornerContactsPointFromTheFeatureToTheCentre) {
+  const Maze maze = grid({{5, 5, 0}});
+  const double d = 0.003;  // offset beyond the top edge along x and z
+  auto contacts = contactsAt(maze, {0.06 + d, 0.055, 0.01 + d}, 0.005);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR((contacts[0].normal - Vec3(1, 0, 1).normalized()).norm(), 0, kTol);
+  EXPECT_NEAR(contacts[0].depth, 0.005 - d * std::sqrt(2.0), kTol);
+  contacts = contactsAt(maze, {0.06 + d, 0.06 + d, 0.01 + d}, 0.006);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR((contacts[0].normal - Vec3(1, 1, 1).normalized()).norm(), 0, kTol);
+  EXPECT_NEAR(contacts[0].depth, 0.006 - d * std::sqrt(3.0), kTol);
+}
+
+TEST(FindContacts, NoContactBeyondTheRadius) {
+  const Maze maze = grid({{5, 5, 0}});
+  EXPECT_TRUE(contactsAt(maze, {0.055, 0.055, 0.0151}, 0.005).empty());
+  EXPECT_TRUE(contactsAt(maze, {0.064, 0.055, 0.014}, 0.005).empty());  // 5.66 mm from the edge
+}
+
+TEST(FindContacts, SeamsBetweenFloorTilesActAsOneFlatFloor) {
+  const Maze maze = grid({{4, 5, 0}, {5, 5, 0}, {4, 4, 0}, {5, 4, 0}});
+  // A slightly sunk marble near a seam, near the corner where four tiles meet, and on it.
+  for (const Vec3& centre :
+       {Vec3(0.0501, 0.055, 0.01499), Vec3(0.0499, 0.0501, 0.01499), Vec3(0.05, 0.05, 0.01499)}) {
+    const auto contacts = contactsAt(maze, centre, 0.005);
+    ASSERT_EQ(contacts.size(), 1u) << centre.transpose();
+    EXPECT_EQ(contacts[0].normal, Vec3(0, 0, 1)) << centre.transpose();
+    EXPECT_NEAR(contacts[0].depth, 1e-5, kTol);
+  }
+}
+
+TEST(FindContacts, SeamsInAWallActAsOneFlatWall) {
+  // A wall of tiles along y at x slot 5, layer 1, on a floor.
+  Maze maze = grid({});
+  for (int j = 0; j < 10; ++j) {
+    maze.setSolid({5, j, 1}, true);
+    for (int i = 0; i < 10; ++i) maze.setSolid({i, j, 0}, true);
+  }
+  const auto contacts = contactsAt(maze, {0.06 + 0.0049, 0.05, 0.015}, 0.005);
+  ASSERT_EQ(contacts.size(), 2u);  // the floor and the wall, nothing from the seams
+  for (const Contact& c : contacts)
+    EXPECT_TRUE(c.normal == Vec3(1, 0, 0) || c.normal == Vec3(0, 0, 1)) << c.normal.transpose();
+}
+
+TEST(FindContacts, AMarbleLargerThanACellFindsEveryTileItTouches) {
+  Maze maze(AxisSlots::uniform(0.002, 20), AxisSlots::uniform(0.002, 20),
+            AxisSlots::uniform(0.002, 20));
+  maze.setSolid({0, 10, 10}, true);   // 18.5 mm from the centre along -x
+  maze.setSolid({19, 10, 10}, true);  // 17.5 mm along +x
+  const double radius = 0.019;        // nine and a half slots
+  const auto contacts = contactsAt(maze, {0.0205, 0.021, 0.021}, radius);
+  ASSERT_EQ(contacts.size(), 2u);
+  for (const Contact& c : contacts) EXPECT_NEAR(std::abs(c.normal.x()), 1.0, kTol);
+}
+
+TEST(FindContacts, ACentreInsideATileLeavesThroughTheNearestOpenFace) {
+  const Maze maze = grid({{5, 5, 0}, {6, 5, 0}});
+  const auto contacts = contactsAt(maze, {0.059, 0.055, 0.006}, 0.005);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_EQ(contacts[0].normal, Vec3(0, 0, 1));  // the +x face is shared with a tile
+  EXPECT_NEAR(contacts[0].depth, 0.005 + 0.004, kTol);
+}
+
+TEST(FindContacts, FollowsTheBoardFrameByEquationFour) {
+  const Maze maze = grid({{5, 5, 0}});
+  GridFrame frame;
+  frame.rotation = Eigen::AngleAxisd(0.3, Vec3::UnitY()).toRotationMatrix();
+  frame.origin = Vec3(0.1, -0.2, 0.05);
+  const Vec3 grid_centre(0.055, 0.055, 0.014);
+  std::vector<Contact> contacts;
+  findContacts(maze, frame, frame.toWorld(grid_centre), 0.005, 1e-9, &contacts);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR((contacts[0].normal - frame.rotation.col(2)).norm(), 0, kTol);
+  EXPECT_NEAR(contacts[0].depth, 0.001, kTol);
+}
+
+TEST(SphereBoxImpact, FaceEdgeAndCornerTimesMatchHandWorkedValues) {
+  const Box box{{0, 0, 0}, {0.01, 0.01, 0.01}};
+  double t;
+  Vec3 q;
+  // Face: from x = -0.02 towards +x, radius 0.005: touches at x = -0.005, t = 0.015 / 0.03.
+  ASSERT_TRUE(sphereBoxImpact({-0.02, 0.005, 0.005}, {0.03, 0, 0}, 0.005, box, &t, &q));
+  EXPECT_NEAR(t, 0.5, kTol);
+  EXPECT_NEAR(q.x(), 0.0, kTol);
+  // Edge along z at (0, 0): centre path y = -0.003 moving +x: touches when x = -0.004.
+  ASSERT_TRUE(sphereBoxImpact({-0.02, -0.003, 0.005}, {0.02, 0, 0}, 0.005, box, &t, &q));
+  EXPECT_NEAR(t, (0.02 - 0.004) / 0.02, kTol);
+  EXPECT_NEAR((q - Vec3(0, 0, 0.005)).norm(), 0, kTol);
+  // Corner: along the diagonal towards (0, 0, 0).
+  const Vec3 dir = Vec3(1, 1, 1).normalized();
+  ASSERT_TRUE(sphereBoxImpact(-0.02 * dir, 0.02 * dir, 0.005, box, &t, &q));
+  EXPECT_NEAR(t, 0.75, kTol);
+  EXPECT_NEAR(q.norm(), 0, kTol);
+  // A miss beside the rounded edge.
+  EXPECT_FALSE(sphereBoxImpact({-0.02, -0.004, -0.004}, {0.04, 0, 0}, 0.005, box, &t, &q));
+}
+
+TEST(SweepSphere, AFastMarbleNeverPassesAThinWall) {
+  Maze maze(AxisSlots(0.005, 0.02, 11), AxisSlots(0.005, 0.02, 5), AxisSlots::uniform(0.01, 1));
+  maze.setSolid({6, 2, 0}, true);  // a 5 mm thin slot, x from 0.075 to 0.08
+  SweepHit hit;
+  // 100 m/s over 1 ms: 10 cm in one step, straight through the wall's place.
+  ASSERT_TRUE(
+      sweepSphere(maze, GridFrame(), {0.01, 0.0275, 0.005}, {0.1, 0, 0}, 0.005, 1e-9, &hit));
+  EXPECT_NEAR(0.01 + 0.1 * hit.fraction, 0.075 - 0.005, 1e-12);
+  EXPECT_EQ(hit.contact.normal, Vec3(-1, 0, 0));
+  EXPECT_EQ(hit.contact.tile, Index3(6, 2, 0));
+}
+
+TEST(SweepSphere, RollingOverSeamsOfASunkenFloorHitsNothing) {
+  Maze maze(AxisSlots(0.005, 0.02, 41), AxisSlots::uniform(0.02, 3), AxisSlots::uniform(0.01, 1));
+  for (int i = 0; i < 41; ++i) maze.setSolid({i, 1, 0}, true);
+  SweepHit hit;
+  // 1 nm below resting height, across twenty seams.
+  EXPECT_FALSE(
+      sweepSphere(maze, GridFrame(), {0.01, 0.03, 0.016 - 1e-9}, {0.4, 0, 0}, 0.006, 1e-9, &hit));
+  // A tile standing 1 mm proud of the floor is hit, on its top edge.
+  Maze step_up(AxisSlots(0.005, 0.02, 41), AxisSlots::uniform(0.02, 3), AxisSlots(0.01, 0.001, 2));
+  for (int i = 0; i < 41; ++i) step_up.setSolid({i, 1, 0}, true);
+  step_up.setSolid({20, 1, 1}, true);
+  ASSERT_TRUE(
+      sweepSphere(step_up, GridFrame(), {0.01, 0.03, 0.016}, {0.4, 0, 0}, 0.006, 1e-9, &hit));
+  EXPECT_EQ(hit.contact.tile, Index3(20, 1, 1));
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -1,0 +1,384 @@
+// Maze files: the built-in mazes, the format's mapping to the grid, and clear errors for bad files.
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "marble_maze/maze_file.h"
+
+namespace marble_maze {
+namespace {
+
+// A valid grid (lines 1-4) and layout (lines 5-8) that the malformed files below build on, so
+// that each of them breaks one thing at a known line.
+const std::string kGrid =
+    "grid:\n"
+    "  x: [0.005, 0.02]\n"
+    "  y: [0.005, 0.02]\n"
+    "  z: [0.005, 0.012]\n";
+const std::string kLayout =
+    "layout: |\n"
+    "  +-+-+\n"
+    "  |S G|\n"
+    "  +-+-+\n";
+
+/// what() of the MazeFileError that parsing `text` as "bad.yaml" throws.
+std::string errorOf(const std::string& text, const Params& defaults = Params()) {
+  try {
+    parseScene(text, "bad.yaml", defaults);
+  } catch (const MazeFileError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+/// Whether `text` fails at `location` ("bad.yaml:LINE:COLUMN:") with a message containing `phrase`.
+::testing::AssertionResult failsWith(const std::string& text, const std::string& location,
+                                     const std::string& phrase, const Params& defaults = Params()) {
+  const std::string what = errorOf(text, defaults);
+  if (what.rfind(location + " ", 0) == 0 && what.find(phrase) != std::string::npos)
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "expected '" << location << " ...'" << phrase << "...', got '" << what << "'";
+}
+
+/// Whether the marble can roll from the start column to a goal column: a breadth-first search over
+/// the slots of the wall layer (1), where a slot is passable if it is empty there and no hole.
+bool routeExists(const Maze& maze) {
+  const auto passable = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < maze.size().x() && j < maze.size().y() &&
+           !maze.solid({i, j, 1}) && !maze.isHole({i, j});
+  };
+  std::vector<bool> seen(maze.size().x() * maze.size().y(), false);
+  std::deque<Maze::Cell> queue;
+  if (!passable(maze.start().i, maze.start().j)) return false;
+  queue.push_back(maze.start());
+  seen[maze.start().j * maze.size().x() + maze.start().i] = true;
+  while (!queue.empty()) {
+    const Maze::Cell c = queue.front();
+    queue.pop_front();
+    if (maze.isGoal(c)) return true;
+    const Maze::Cell next[] = {{c.i + 1, c.j}, {c.i - 1, c.j}, {c.i, c.j + 1}, {c.i, c.j - 1}};
+    for (const auto& n : next) {
+      if (!passable(n.i, n.j) || seen[n.j * maze.size().x() + n.i]) continue;
+      seen[n.j * maze.size().x() + n.i] = true;
+      queue.push_back(n);
+    }
+  }
+  return false;
+}
+
+// --- the built-in mazes --------------------------------------------------------------------------
+
+TEST(MazeFile, BuiltInMazesLoadClassicFirst) {
+  const auto names = embeddedSceneNames();
+  ASSERT_GE(names.size(), 2u);
+  EXPECT_EQ(names[0], "classic");
+  for (const auto& name : names) {
+    const Scene scene = loadScene(name);
+    EXPECT_EQ(scene.maze.name(), name);
+  }
+}
+
+TEST(MazeFile, ClassicIsSizedLikeTheRealGame) {
+  const Maze maze = loadScene("classic").maze;
+  EXPECT_EQ(maze.size(), Index3(21, 17, 2));
+  EXPECT_NEAR(maze.extent().x(), 0.276, 1e-9);
+  EXPECT_NEAR(maze.extent().y(), 0.231, 1e-9);
+  EXPECT_NEAR(maze.axis(2).thin(), 0.005, 1e-12);
+  EXPECT_NEAR(maze.axis(2).wide(), 0.012, 1e-12);
+}
+
+TEST(MazeFile, ClassicHasPostsOuterWallsHolesStartAndGoal) {
+  const Maze maze = loadScene("classic").maze;
+  for (int j = 0; j < 17; j += 2)
+    for (int i = 0; i < 21; i += 2) EXPECT_TRUE(maze.solid({i, j, 1})) << "post " << i << "," << j;
+  for (int i = 0; i < 21; ++i) EXPECT_TRUE(maze.solid({i, 0, 1}) && maze.solid({i, 16, 1}));
+  for (int j = 0; j < 17; ++j) EXPECT_TRUE(maze.solid({0, j, 1}) && maze.solid({20, j, 1}));
+
+  const auto holes = maze.holes();
+  EXPECT_GE(holes.size(), 4u);
+  EXPECT_LE(holes.size(), 8u);
+  for (const auto& h : holes) EXPECT_TRUE(h.i % 2 == 1 && h.j % 2 == 1) << h.i << "," << h.j;
+
+  EXPECT_FALSE(maze.isHole(maze.start()));
+  EXPECT_EQ(maze.goals().size(), 1u);
+  // Start and goal sit near opposite corners.
+  EXPECT_LT(maze.start().i, 7);
+  EXPECT_GT(maze.start().j, 10);
+  EXPECT_GT(maze.goals()[0].i, 14);
+  EXPECT_LT(maze.goals()[0].j, 6);
+}
+
+TEST(MazeFile, ClassicHasARouteAroundTheHoles) {
+  EXPECT_TRUE(routeExists(loadScene("classic").maze));
+}
+
+TEST(MazeFile, RouteSearchSeesABlockingHole) {
+  // Guards the search above: it must not find a route through a hole.
+  const Scene scene = parseScene(kGrid + "layout: |\n  +-+-+-+\n  |S O G|\n  +-+-+-+\n", "t");
+  EXPECT_FALSE(routeExists(scene.maze));
+}
+
+TEST(MazeFile, ClassicStatesRollingPhysics) {
+  const Params p = loadScene("classic").params;
+  EXPECT_EQ(p.model, Model::Rolling);
+  EXPECT_DOUBLE_EQ(p.restitution, 0.5);
+  EXPECT_DOUBLE_EQ(p.friction, 0.3);
+}
+
+TEST(MazeFile, PrototypeRemakesTheSeedLevel) {
+  const Scene scene = loadScene("prototype");
+  const Maze& maze = scene.maze;
+  ASSERT_EQ(maze.size(), Index3(11, 7, 5));
+  EXPECT_NEAR(maze.extent().x(), 6 * 0.004 + 5 * 0.02, 1e-12);
+  ASSERT_EQ(maze.holes().size(), 1u);
+  EXPECT_TRUE(maze.holes()[0].i % 2 == 1 && maze.holes()[0].j % 2 == 1);
+  for (int k = 1; k < 5; ++k) {
+    for (int j = 0; j < 7; ++j) EXPECT_TRUE(maze.solid({0, j, k}) && maze.solid({10, j, k}));
+    for (int i = 0; i < 11; ++i) EXPECT_TRUE(maze.solid({i, 6, k}));
+    for (int i = 1; i < 10; ++i) EXPECT_FALSE(maze.solid({i, 0, k})) << "the -y side is open";
+  }
+  EXPECT_FALSE(maze.isHole(maze.start()));
+  EXPECT_EQ(maze.goals().size(), 1u);
+  EXPECT_EQ(scene.params.model, Model::Smooth);
+  EXPECT_DOUBLE_EQ(scene.params.restitution, 0.7);
+  EXPECT_DOUBLE_EQ(scene.params.friction, 0.0);
+  EXPECT_DOUBLE_EQ(scene.params.marble_radius, 0.009);
+}
+
+// --- the format ----------------------------------------------------------------------------------
+
+TEST(MazeFile, LayoutTopLineIsTheLargestY) {
+  const Scene scene = parseScene(kGrid +
+                                     "layout: |\n"
+                                     "  +-+-+\n"   // y = 3
+                                     "  |S O|\n"   // y = 2
+                                     "  + +-+\n"   // y = 1
+                                     "  |. G|\n",  // y = 0
+                                 "t");
+  const Maze& maze = scene.maze;
+  ASSERT_EQ(maze.size(), Index3(5, 4, 2));
+  EXPECT_EQ(maze.start(), (Maze::Cell{1, 2}));
+  ASSERT_EQ(maze.goals().size(), 1u);
+  EXPECT_EQ(maze.goals()[0], (Maze::Cell{3, 0}));
+  // Wall characters are solid in both layers.
+  EXPECT_TRUE(maze.solid({0, 3, 0}) && maze.solid({0, 3, 1}));
+  EXPECT_TRUE(maze.solid({2, 1, 0}) && maze.solid({2, 1, 1}));
+  // Open floor, '.', start and goal are solid at layer 0 only.
+  for (const Index3& t : {Index3(1, 1, 0), Index3(1, 0, 0), Index3(1, 2, 0), Index3(3, 0, 0)}) {
+    EXPECT_TRUE(maze.solid(t));
+    EXPECT_FALSE(maze.solid(t + Index3(0, 0, 1)));
+  }
+  // 'O' leaves both layers empty: a hole.
+  EXPECT_FALSE(maze.solid({3, 2, 0}) || maze.solid({3, 2, 1}));
+  ASSERT_EQ(maze.holes().size(), 1u);
+  EXPECT_EQ(maze.holes()[0], (Maze::Cell{3, 2}));
+  EXPECT_EQ(maze.axis(0).thin(), 0.005);
+  EXPECT_EQ(maze.axis(0).wide(), 0.02);
+}
+
+TEST(MazeFile, LayersStackPlansBottomFirst) {
+  const Scene scene = parseScene(kGrid +
+                                     "layers:\n"
+                                     "  - |  # floor\n"
+                                     "    ##O\n"
+                                     "    ###\n"
+                                     "  - |\n"
+                                     "    S.#\n"
+                                     "    .G#\n"
+                                     "  - |\n"
+                                     "    ...\n"
+                                     "    ..+\n",
+                                 "t");
+  const Maze& maze = scene.maze;
+  ASSERT_EQ(maze.size(), Index3(3, 2, 3));
+  EXPECT_EQ(maze.start(), (Maze::Cell{0, 1}));
+  ASSERT_EQ(maze.goals().size(), 1u);
+  EXPECT_EQ(maze.goals()[0], (Maze::Cell{1, 0}));
+  ASSERT_EQ(maze.holes().size(), 1u);
+  EXPECT_EQ(maze.holes()[0], (Maze::Cell{2, 1}));
+  int solid = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 3; ++i) solid += maze.solid({i, j, k}) ? 1 : 0;
+  EXPECT_EQ(solid, 5 + 2 + 1);
+  EXPECT_FALSE(maze.solid({0, 1, 1})) << "the start marks a column; its tile is empty";
+  EXPECT_TRUE(maze.solid({2, 0, 2}));
+}
+
+TEST(MazeFile, OneNumberMakesAUniformAxis) {
+  const Scene scene = parseScene("grid: {x: 0.01, y: [0.005, 0.02], z: 0.004}\n" + kLayout, "t");
+  EXPECT_TRUE(scene.maze.axis(0).isUniform());
+  EXPECT_NEAR(scene.maze.extent().x(), 0.05, 1e-12);
+  EXPECT_FALSE(scene.maze.axis(1).isUniform());
+  EXPECT_NEAR(scene.maze.extent().z(), 0.008, 1e-12);
+}
+
+TEST(MazeFile, NameDefaultsToTheFileName) {
+  EXPECT_EQ(parseScene(kGrid + kLayout, "some/dir/my_maze.yaml").maze.name(), "my_maze");
+  EXPECT_EQ(parseScene("name: mine\n" + kGrid + kLayout, "x.yaml").maze.name(), "mine");
+}
+
+TEST(MazeFile, PhysicsOverridesTheDefaults) {
+  Params defaults;
+  defaults.gravity = 5.0;
+  defaults.restitution = 0.1;
+  const Scene scene = parseScene(kGrid + kLayout +
+                                     "physics:\n"
+                                     "  model: smooth\n"
+                                     "  restitution: 0.9\n"
+                                     "  start_position: [0.01, 0.02, 0.03]\n",
+                                 "t", defaults);
+  EXPECT_EQ(scene.params.model, Model::Smooth);
+  EXPECT_DOUBLE_EQ(scene.params.restitution, 0.9);
+  EXPECT_DOUBLE_EQ(scene.params.gravity, 5.0);
+  EXPECT_TRUE(scene.params.has_start_position);
+  EXPECT_DOUBLE_EQ(scene.params.start_position.y(), 0.02);
+  EXPECT_DOUBLE_EQ(parseScene(kGrid + kLayout, "t", defaults).params.restitution, 0.1);
+}
+
+// --- malformed files: each error points at the culprit and says what was expected --------------
+
+TEST(MazeFileError, UnknownPhysicsKeyNamesTheKeyAndLine) {
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  model: smooth\n  restitutoin: 0.2\n",
+                        "bad.yaml:11:3:", "unknown parameter 'restitutoin'"));
+}
+
+TEST(MazeFileError, BadPhysicsValue) {
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  restitution: 2\n",
+                        "bad.yaml:10:16:", "restitution: 2 is out of range"));
+}
+
+TEST(MazeFileError, PhysicsThatFailsValidationPointsAtPhysics) {
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  bounce_threshold: 0.001\n",
+                        "bad.yaml:9:1:", "bounce_threshold"));
+  Params defaults;
+  defaults.bounce_threshold = 0.0;
+  EXPECT_TRUE(failsWith(kGrid + kLayout, "bad.yaml:1:1:", "bounce_threshold", defaults));
+}
+
+TEST(MazeFileError, YamlSyntaxError) {
+  // An unclosed '[': yaml-cpp notices on the next line, and its mark is reported as it is.
+  EXPECT_TRUE(failsWith("grid:\n  x: [0.005, 0.02\n  y: 0.01\n",
+                        "bad.yaml:3:4:", "YAML syntax error: end of sequence flow not found"));
+}
+
+TEST(MazeFileError, EmptyFile) {
+  EXPECT_TRUE(failsWith("# nothing\n", "bad.yaml:1:1:", "the file is empty"));
+}
+
+TEST(MazeFileError, UnknownTopLevelKey) {
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "physic:\n  model: smooth\n", "bad.yaml:9:1:",
+                        "unknown key 'physic' at the top level; expected one of: name, grid"));
+}
+
+TEST(MazeFileError, RepeatedKey) {
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "grid: {x: 1, y: 1, z: 1}\n", "bad.yaml:9:1:",
+                        "key 'grid' given twice at the top level (first at line 1)"));
+}
+
+TEST(MazeFileError, MissingGrid) {
+  EXPECT_TRUE(failsWith(kLayout, "bad.yaml:1:1:", "missing key 'grid'"));
+}
+
+TEST(MazeFileError, MissingGridAxis) {
+  EXPECT_TRUE(
+      failsWith("grid:\n  x: 0.01\n  y: 0.01\n" + kLayout, "bad.yaml:1:1:", "grid: missing 'z'"));
+}
+
+TEST(MazeFileError, NegativeWidth) {
+  EXPECT_TRUE(failsWith("grid:\n  x: [-0.005, 0.02]\n  y: 0.01\n  z: 0.01\n" + kLayout,
+                        "bad.yaml:2:7:", "grid.x[0] (thin): expected a positive width"));
+}
+
+TEST(MazeFileError, WidthThatIsNotANumberNamesTheKey) {
+  EXPECT_TRUE(failsWith("grid:\n  x: 0.01\n  y: wide\n  z: 0.01\n" + kLayout,
+                        "bad.yaml:3:6:", "grid.y: expected a width in metres, found 'wide'"));
+}
+
+TEST(MazeFileError, GridListOfThreeNumbers) {
+  EXPECT_TRUE(failsWith("grid:\n  x: 0.01\n  y: [0.005, 0.02, 0.03]\n  z: 0.01\n" + kLayout,
+                        "bad.yaml:3:6:", "grid.y: expected a list of 2 widths [thin, wide]"));
+}
+
+TEST(MazeFileError, UnknownLayoutCharacterPointsAtTheCharacter) {
+  EXPECT_TRUE(failsWith(kGrid + "layout: |\n  +-+-+\n  |SxG|\n  +-+-+\n", "bad.yaml:7:5:",
+                        "unknown character 'x' in layout; expected one of '+-|# .OSG'"));
+  // Deeper indentation, a comment after '|' and Windows line ends move nothing.
+  EXPECT_TRUE(
+      failsWith(kGrid + "layout: |  # plan\r\n      +-+-+\r\n      |S G|\r\n      +-*-+\r\n",
+                "bad.yaml:8:9:", "unknown character '*'"));
+}
+
+TEST(MazeFileError, UnknownCharacterInALaterPlanOfLayers) {
+  // A UTF-8 block character counts as one column, as in an editor.
+  EXPECT_TRUE(failsWith(kGrid + "layers:\n  - |\n    ##\n  - |\n    S\xE2\x96\x88\n",
+                        "bad.yaml:9:6:", "unknown character '\xE2\x96\x88' in layers plan 1"));
+}
+
+TEST(MazeFileError, RaggedRow) {
+  EXPECT_TRUE(failsWith(kGrid + "layout: |\n  +-+-+\n  |S G |\n  +-+-+\n", "bad.yaml:7:3:",
+                        "layout: expected every row 5 characters long like the first, found 6"));
+}
+
+TEST(MazeFileError, FoldedBlock) {
+  EXPECT_TRUE(failsWith(kGrid + "layout: >\n  +-+-+\n  |S G|\n  +-+-+\n",
+                        "bad.yaml:5:9:", "expected a literal block '|', found a folded block '>'"));
+}
+
+TEST(MazeFileError, NoStart) {
+  EXPECT_TRUE(failsWith(kGrid + "layout: |\n  +-+-+\n  |  G|\n  +-+-+\n",
+                        "bad.yaml:5:1:", "layout: no start 'S' found; expected exactly one"));
+}
+
+TEST(MazeFileError, TwoStarts) {
+  EXPECT_TRUE(failsWith(kGrid + "layout: |\n  +-+-+-+\n  |S S G|\n  +-+-+-+\n",
+                        "bad.yaml:7:6:", "a second start 'S' (the first is at line 7, column 4)"));
+}
+
+TEST(MazeFileError, NoGoal) {
+  EXPECT_TRUE(failsWith(kGrid + "layout: |\n  +-+-+\n  |S  |\n  +-+-+\n",
+                        "bad.yaml:5:1:", "layout: no goal 'G' found; expected at least one"));
+}
+
+TEST(MazeFileError, StartInAHole) {
+  EXPECT_TRUE(failsWith(kGrid + "layers:\n  - |\n    #O#\n  - |\n    .SG\n",
+                        "bad.yaml:9:6:", "the start 'S' is above a hole"));
+}
+
+TEST(MazeFileError, HoleAboveTheFloorPlan) {
+  EXPECT_TRUE(failsWith(kGrid + "layers:\n  - |\n    ###\n  - |\n    SOG\n",
+                        "bad.yaml:9:6:", "layers plan 1: 'O' (a hole) belongs in plan 0"));
+}
+
+TEST(MazeFileError, BothLayoutAndLayers) {
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "layers:\n  - |\n    #\n",
+                        "bad.yaml:9:1:", "both 'layout' and 'layers' given; expected exactly one"));
+}
+
+TEST(MazeFileError, NeitherLayoutNorLayers) {
+  EXPECT_TRUE(failsWith(kGrid, "bad.yaml:1:1:", "missing key 'layout' (a plan) or 'layers'"));
+}
+
+TEST(MazeFileError, LayersPlansOfDifferentSizes) {
+  EXPECT_TRUE(failsWith(
+      kGrid + "layers:\n  - |\n    ###\n    ###\n  - |\n    SG\n    ..\n",
+      "bad.yaml:9:5:", "layers plan 1: expected 3 x 2 characters like plan 0, found 2 x 2"));
+}
+
+TEST(MazeFileError, MissingFile) {
+  const std::string path = ::testing::TempDir() + "marble_maze_no_such_maze.yaml";
+  try {
+    loadScene(path);
+    FAIL() << "expected a MazeFileError";
+  } catch (const MazeFileError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": cannot read file");
+    EXPECT_EQ(e.line, 0);
+    EXPECT_EQ(e.source, path);
+  }
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -1,0 +1,72 @@
+#include <gtest/gtest.h>
+
+#include "marble_maze/params.h"
+
+namespace marble_maze {
+namespace {
+
+std::string errorOf(const std::string& key, const std::string& value) {
+  Params p;
+  try {
+    setParam(p, key, value);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Params, EveryKeyRoundTripsThroughText) {
+  for (const ParamInfo& info : paramInfos()) {
+    Params p;
+    const std::string text = getParam(p, info.key);
+    if (info.key == "start_position") continue;  // "start cell" until set
+    EXPECT_NO_THROW(setParam(p, info.key, text)) << info.key << "=" << text;
+    EXPECT_EQ(getParam(p, info.key), text) << info.key;
+  }
+}
+
+TEST(Params, ValuesAreParsed) {
+  Params p;
+  setParam(p, "model", "smooth");
+  setParam(p, "restitution", "0.7");
+  setParam(p, "substeps", "4");
+  setParam(p, "start_position", "0.01,-0.02,0.006");
+  EXPECT_EQ(p.model, Model::Smooth);
+  EXPECT_DOUBLE_EQ(p.restitution, 0.7);
+  EXPECT_EQ(p.substeps, 4);
+  EXPECT_TRUE(p.has_start_position);
+  EXPECT_EQ(p.start_position, Vec3(0.01, -0.02, 0.006));
+}
+
+TEST(Params, BadValuesNameTheKeyAndWhatWasExpected) {
+  EXPECT_EQ(errorOf("restitution", "x"), "restitution: expected a number, got 'x'");
+  EXPECT_EQ(errorOf("restitution", "1.5"), "restitution: 1.5 is out of range [0, 1]");
+  EXPECT_EQ(errorOf("restitution", "nan"), "restitution: expected a number, got 'nan'");
+  EXPECT_EQ(errorOf("model", "bouncy"), "model: expected 'smooth' or 'rolling', got 'bouncy'");
+  EXPECT_EQ(errorOf("substeps", "2.5"), "substeps: expected a whole number, got '2.5'");
+  EXPECT_NE(errorOf("start_position", "1,2").find("start_position: expected three"),
+            std::string::npos);
+  EXPECT_NE(errorOf("restitushun", "1").find("unknown parameter 'restitushun'"), std::string::npos);
+}
+
+TEST(Params, ValidateRefusesAThresholdThatWouldMakeRestingMarblesBounce) {
+  Params p;
+  p.step = 0.01;
+  try {
+    validate(p);
+    FAIL() << "expected a ParamError";
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("bounce_threshold"), std::string::npos);
+  }
+  p.substeps = 10;
+  EXPECT_NO_THROW(validate(p));
+}
+
+TEST(Params, SteelMarbleMassAndInertia) {
+  const Params p;  // 12 mm steel ball
+  EXPECT_NEAR(p.marbleMass(), 7850 * 4.0 / 3.0 * M_PI * 0.006 * 0.006 * 0.006, 1e-12);
+  EXPECT_NEAR(p.marbleInertia(), 0.4 * p.marbleMass() * 0.006 * 0.006, 1e-15);
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -1,0 +1,329 @@
+// The engine against closed-form physics and conservation laws. Each tolerance is stated where
+// it is used.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "marble_maze/simulation.h"
+#include "scenes.h"
+
+namespace marble_maze {
+namespace {
+
+using test::kPi;
+using test::placed;
+
+constexpr double kRadius = 0.006;
+
+double run(Simulation* sim, double seconds) {
+  const auto steps = static_cast<int>(std::lround(seconds / sim->params().step));
+  for (int i = 0; i < steps; ++i) sim->step();
+  return sim->time();
+}
+
+Params model(Model m, double restitution = 0.5) {
+  Params p;
+  p.model = m;
+  p.restitution = restitution;
+  return p;
+}
+
+// --- Incline -------------------------------------------------------------------------------
+
+double inclineDistance(Model m, double theta, double seconds) {
+  Params p = placed(model(m), {-0.95, 0, kRadius});
+  p.initial_pitch = theta;  // positive pitch lowers the board's +x end
+  Simulation sim(test::flatFloor(200, 10, 0.01, p));
+  const Vec3 start = sim.marble().position;
+  run(&sim, seconds);
+  EXPECT_EQ(sim.marble().phase, MarblePhase::Free);
+  return (sim.marble().position - start).norm();
+}
+
+TEST(Incline, RollingSphereCoversFiveFourteenthsGSinThetaTSquared) {
+  const double theta = 10 * kPi / 180, g = 9.81;
+  const double expected = 5.0 / 14.0 * g * std::sin(theta) * 1.0;
+  EXPECT_NEAR(inclineDistance(Model::Rolling, theta, 1.0), expected, 0.005 * expected);  // 0.5%
+}
+
+TEST(Incline, SmoothSphereCoversHalfGSinThetaTSquared) {
+  const double theta = 10 * kPi / 180, g = 9.81;
+  const double expected = 0.5 * g * std::sin(theta) * 1.0;
+  EXPECT_NEAR(inclineDistance(Model::Smooth, theta, 1.0), expected, 0.005 * expected);  // 0.5%
+}
+
+TEST(Incline, RollingSphereRollsWithoutSlipping) {
+  Params p = placed(model(Model::Rolling), {-0.95, 0, kRadius});
+  p.initial_pitch = 10 * kPi / 180;
+  Simulation sim(test::flatFloor(200, 10, 0.01, p));
+  run(&sim, 0.5);
+  const MarbleState& m = sim.marble();
+  const Vec3 n = sim.gridFrame().rotation.col(2);
+  const Vec3 contact_point_velocity = m.velocity + m.angular_velocity.cross(-kRadius * n);
+  EXPECT_LT(contact_point_velocity.norm(), 1e-9);  // m/s
+}
+
+// --- Bounce ----------------------------------------------------------------------------------
+
+std::vector<double> apexHeights(Model m, double step, int count) {
+  const double h0 = 0.05, e = 0.7;
+  Params p = placed(model(m, e), {0, 0, kRadius + h0});
+  p.step = step;
+  Simulation sim(test::flatFloor(10, 10, 0.01, p));
+  std::vector<double> apexes;
+  double previous = sim.marble().position.z(), rising = false;
+  while (static_cast<int>(apexes.size()) < count && sim.time() < 3) {
+    sim.step();
+    const double z = sim.marble().position.z();
+    if (rising && z < previous) apexes.push_back(previous - kRadius);
+    rising = z > previous;
+    previous = z;
+  }
+  return apexes;
+}
+
+TEST(Bounce, ApexHeightsFollowRestitutionSquared) {
+  const double h0 = 0.05, e = 0.7;
+  for (Model m : {Model::Smooth, Model::Rolling}) {
+    const auto apexes = apexHeights(m, Params().step, 5);
+    ASSERT_EQ(apexes.size(), 5u);
+    for (int k = 1; k <= 5; ++k) {
+      const double expected = h0 * std::pow(e, 2 * k);
+      EXPECT_NEAR(apexes[k - 1], expected, 0.01 * expected) << "apex " << k;  // 1%
+    }
+  }
+}
+
+// --- Rest ------------------------------------------------------------------------------------
+
+TEST(Rest, AMarbleAtRestStaysAtRestFor100Seconds) {
+  for (Model m : {Model::Smooth, Model::Rolling}) {
+    Simulation sim(test::flatFloor(10, 10, 0.01, placed(model(m), {0.001, -0.002, kRadius})));
+    const Vec3 start = sim.marble().position;
+    const double energy0 = sim.energy();
+    double max_vz = 0, max_rise = 0;
+    while (sim.time() < 100) {
+      sim.step();
+      max_vz = std::max(max_vz, std::abs(sim.marble().velocity.z()));
+      max_rise = std::max(max_rise, sim.energy() - energy0);
+    }
+    EXPECT_LT((sim.marble().position - start).norm(), 1e-6);  // m
+    EXPECT_LT(max_vz, 1e-6);                                  // m/s
+    EXPECT_LE(max_rise, 1e-15);  // J: the energy never rises (rounding aside)
+    EXPECT_TRUE(sim.events().empty());
+  }
+}
+
+// --- Seams -----------------------------------------------------------------------------------
+
+TEST(Seams, RollingOverAHundredFloorTilesStaysOnTheSurface) {
+  // Alternating 5 mm and 22.1 mm tiles: 101 tiles along x, seams at every boundary; the
+  // diagonal run crosses seams along y as well.
+  const AxisSlots x(0.005, 0.0221, 101), y(0.005, 0.0221, 41), z = AxisSlots::uniform(0.005, 1);
+  for (Model m : {Model::Smooth, Model::Rolling}) {
+    for (const Vec3& v : {Vec3(0.5, 0, 0), Vec3(0.5 * std::cos(0.3), 0.5 * std::sin(0.3), 0)}) {
+      const double x0 = -x.length() / 2 + 0.01;
+      Params p = placed(model(m), {x0, -0.22, kRadius}, v);
+      Simulation sim({test::floorMaze(x, y, z), p});
+      double max_across = 0;
+      int tiles_crossed = 0;
+      int last_slot = sim.maze().cellAt(sim.gridFrame().toGrid(sim.marble().position)).i;
+      while (sim.marbleInBoard().x() < x.length() / 2 - 0.02 && sim.time() < 5) {
+        sim.step();
+        max_across = std::max(max_across, std::abs(sim.marble().velocity.z()));
+        const int slot = sim.maze().cellAt(sim.gridFrame().toGrid(sim.marble().position)).i;
+        tiles_crossed += slot != last_slot;
+        last_slot = slot;
+      }
+      EXPECT_GE(tiles_crossed, 95);
+      EXPECT_LT(max_across, 1e-6);  // m/s across the floor
+      EXPECT_TRUE(sim.events().empty());
+    }
+  }
+}
+
+TEST(Seams, SlidingAlongAWallOfAHundredTilesStaysOnTheWall) {
+  // A wall along x (y slot 2, layer 1) of 101 alternating tiles; the board rolled slightly so
+  // that the marble leans on the wall while it slides along it.
+  const AxisSlots x(0.005, 0.0221, 101), y(0.005, 0.0221, 5), z(0.005, 0.012, 2);
+  Maze maze = test::floorMaze(x, y, z);
+  for (int i = 0; i < x.count(); ++i) maze.setSolid({i, 2, 1}, true);
+  const double wall_side = y.lower(2) - maze.pivot().y();  // board y of the wall's -y face
+  for (Model m : {Model::Smooth, Model::Rolling}) {
+    Params p =
+        placed(model(m), {-x.length() / 2 + 0.01, wall_side - kRadius, kRadius}, {0.5, 0, 0});
+    p.initial_roll = -0.02;  // lowers the +y side: gravity leans the marble on the wall
+    Simulation sim({maze, p});
+    double max_across = 0;
+    while (sim.marbleInBoard().x() < x.length() / 2 - 0.02 && sim.time() < 5) {
+      sim.step();
+      const Vec3 v_board = sim.gridFrame().rotation.transpose() * sim.marble().velocity;
+      max_across = std::max({max_across, std::abs(v_board.y()), std::abs(v_board.z())});
+    }
+    EXPECT_GT(sim.marbleInBoard().x(), x.length() / 2 - 0.02);
+    EXPECT_LT(max_across, 1e-6);  // m/s across the wall and the floor
+  }
+}
+
+// --- Impacts ---------------------------------------------------------------------------------
+
+struct Impact {
+  Vec3 before, after;
+};
+
+/// A marble sent at a wall (the +x side, x slot 3 of a small maze), its velocity in the board
+/// frame just before and just after the first collision.
+Impact hitWall(Model m, const Vec3& velocity, const Vec3& spin = Vec3::Zero()) {
+  const AxisSlots x(0.005, 0.0221, 5), y(0.005, 0.0221, 5), z(0.005, 0.012, 2);
+  Maze maze = test::floorMaze(x, y, z);
+  for (int j = 0; j < 5; ++j) maze.setSolid({4, j, 1}, true);
+  Params p = placed(model(m, 0.7), {-0.01, 0, kRadius}, velocity);
+  p.gravity = 0;  // the floor touches but does not press: the impact alone
+  Simulation sim({maze, p});
+  Impact result{velocity, velocity};
+  sim.placeMarble(p.start_position, velocity, spin);
+  for (int i = 0; i < 1000; ++i) {
+    result.before = sim.marble().velocity;
+    sim.step();
+    if (!sim.events().empty()) break;
+  }
+  EXPECT_FALSE(sim.events().empty());
+  sim.step();
+  result.after = sim.marble().velocity;
+  return result;
+}
+
+TEST(Impact, HeadOnTheNormalSpeedLeavesAtETimesItsApproach) {
+  for (Model m : {Model::Smooth, Model::Rolling}) {
+    const Vec3 spin = m == Model::Rolling ? Vec3(0, 0.5 / kRadius, 0) : Vec3::Zero();
+    const Impact i = hitWall(m, {0.5, 0, 0}, spin);
+    EXPECT_NEAR(i.after.x(), -0.7 * i.before.x(), 0.01 * 0.7 * i.before.x());  // 1%
+  }
+}
+
+TEST(Impact, SmoothModelKeepsTheTangentialSpeed) {
+  const Impact i = hitWall(Model::Smooth, {0.5, 0.2, 0});
+  EXPECT_NEAR(i.after.x(), -0.7 * 0.5, 0.01 * 0.35);
+  EXPECT_NEAR(i.after.y(), 0.2, 1e-12);
+}
+
+TEST(Impact, ATiltingBoardKicksARestingMarbleAsEquationOneSays) {
+  // A marble at rest on a level board, 0.1 m from the pivot along x. The board starts to pitch
+  // at -2 rad/s, lifting that point at w x (p - pivot) = (0, -2, 0) x (0.1, 0, 0) = (0, 0, 0.2)
+  // m/s. Eq. (1) with v_m = 0, n = +z, e = 0.7: v' = -(1 + e)((0 - 0.2)) n = 0.34 m/s up.
+  Params p = placed(model(Model::Smooth, 0.7), {0.1, 0, kRadius});
+  Simulation sim(test::flatFloor(40, 10, 0.01, p));
+  sim.setTiltRate(0, -2.0);
+  sim.step();
+  ASSERT_EQ(sim.events().size(), 1u);
+  EXPECT_NEAR(sim.events()[0].speed, 0.2, 0.002);  // 1%
+  const Vec3 n = sim.gridFrame().rotation.col(2);
+  EXPECT_NEAR(sim.marble().velocity.dot(n), 0.34, 0.0034);  // 1%
+}
+
+TEST(Impact, AHundredMetresPerSecondNeverTunnelsThroughAFiveMillimetreWall) {
+  const AxisSlots x(0.005, 0.0221, 11), y(0.005, 0.0221, 3), z(0.005, 0.012, 2);
+  Maze maze = test::floorMaze(x, y, z);
+  for (int j = 0; j < 3; ++j) maze.setSolid({6, j, 1}, true);  // a 5 mm wall mid-board
+  const double wall = x.lower(6) - maze.pivot().x();           // its -x face, board frame
+  for (double angle : {0.0, 0.4, 1.2}) {
+    const Vec3 v = 100 * Vec3(std::cos(angle), std::sin(angle) * 0.01, 0);
+    Params p = placed(model(Model::Smooth, 0.7), {wall - 0.05, 0, kRadius}, v);
+    Simulation sim({maze, p});
+    double max_x = -1;
+    for (int i = 0; i < 100; ++i) {
+      sim.step();
+      max_x = std::max(max_x, sim.marbleInBoard().x());
+    }
+    EXPECT_LE(max_x, wall - kRadius + 1e-9) << "angle " << angle;
+  }
+}
+
+// --- Holes and the goal ----------------------------------------------------------------------
+
+TEST(Finish, AHoleSwallowsTheMarbleAndIsReported) {
+  const AxisSlots x(0.005, 0.0221, 9), y(0.005, 0.0221, 3), z(0.005, 0.012, 2);
+  Maze maze = test::floorMaze(x, y, z);
+  maze.setSolid({5, 1, 0}, false);  // a hole
+  Params p =
+      placed(model(Model::Rolling), {x.centre(1) - maze.pivot().x(), 0, kRadius}, {0.2, 0, 0});
+  Simulation sim({maze, p});
+  bool reported = false;
+  while (sim.time() < 2 && !reported) {
+    sim.step();
+    for (const Event& e : sim.events())
+      if (e.kind == EventKind::Hole) {
+        reported = true;
+        EXPECT_EQ(e.tile, Index3(5, 1, 0));
+      }
+  }
+  EXPECT_TRUE(reported);
+  EXPECT_EQ(sim.marble().phase, MarblePhase::InHole);
+  const Vec3 held = sim.marbleInBoard();
+  run(&sim, 0.5);
+  EXPECT_NEAR((sim.marbleInBoard() - held).norm(), 0, 1e-12);  // stays in the hole
+}
+
+TEST(Finish, ReachingTheGoalIsReported) {
+  const AxisSlots x(0.005, 0.0221, 9), y(0.005, 0.0221, 3), z(0.005, 0.012, 2);
+  Maze maze = test::floorMaze(x, y, z);
+  maze.addGoal({7, 1});
+  Params p =
+      placed(model(Model::Rolling), {x.centre(1) - maze.pivot().x(), 0, kRadius}, {0.3, 0, 0});
+  Simulation sim({maze, p});
+  while (sim.time() < 2 && sim.marble().phase == MarblePhase::Free) sim.step();
+  ASSERT_EQ(sim.events().size(), 1u);
+  EXPECT_EQ(sim.events()[0].kind, EventKind::Goal);
+  EXPECT_EQ(sim.events()[0].tile, Index3(7, 1, 0));
+  EXPECT_EQ(sim.marble().phase, MarblePhase::AtGoal);
+}
+
+// --- Board -----------------------------------------------------------------------------------
+
+TEST(Board, TiltIsClampedToTheLimitAndRateLimited) {
+  Params p;
+  p.tilt_limit = 0.1;
+  p.tilt_rate_limit = 1.0;
+  Board board(p);
+  board.setTargetTilt(0.5, -0.5);
+  board.advance(0.01);
+  EXPECT_NEAR(board.roll(), 0.01, 1e-12);  // 1 rad/s for 10 ms
+  EXPECT_NEAR(board.pitch(), -0.01, 1e-12);
+  EXPECT_NEAR(board.angularVelocity().norm(), std::sqrt(2.0), 1e-3);
+  for (int i = 0; i < 100; ++i) board.advance(0.01);
+  EXPECT_DOUBLE_EQ(board.roll(), 0.1);
+  EXPECT_DOUBLE_EQ(board.pitch(), -0.1);
+  EXPECT_EQ(board.angularVelocity(), Vec3::Zero());
+  board.setTiltRate(-5.0, 0);  // clamped to 1 rad/s
+  board.advance(0.01);
+  EXPECT_NEAR(board.roll(), 0.09, 1e-12);
+}
+
+TEST(Board, RotationIsRollThenPitchAboutFixedAxes) {
+  const Mat3 r = Board::rotationFor(0.2, 0.3);
+  const Mat3 expected = Eigen::AngleAxisd(0.3, Vec3::UnitY()).toRotationMatrix() *
+                        Eigen::AngleAxisd(0.2, Vec3::UnitX()).toRotationMatrix();
+  EXPECT_NEAR((r - expected).norm(), 0, 1e-15);
+  // Positive pitch lowers the +x end (REP 103, right hand about +y).
+  EXPECT_LT((r * Vec3::UnitX()).z(), 0);
+}
+
+// --- Determinism -----------------------------------------------------------------------------
+
+TEST(Determinism, TheSameInputsGiveBitIdenticalStates) {
+  auto trajectory = [] {
+    Scene scene = loadScene("classic");
+    Simulation sim(scene);
+    std::vector<double> values;
+    for (int i = 0; i < 3000; ++i) {
+      sim.setTargetTilt(0.1 * std::sin(i * 0.003), 0.1 * std::cos(i * 0.002));
+      sim.step();
+      for (int a = 0; a < 3; ++a) values.push_back(sim.marble().position[a]);
+    }
+    return values;
+  };
+  EXPECT_EQ(trajectory(), trajectory());
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -1,0 +1,85 @@
+// The headless runner as a user calls it.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string output;  // standard output and error
+};
+
+Result runSimulate(const std::string& args) {
+  const std::string command = std::string(SIMULATE_PATH) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+std::string tempPath(const std::string& name) {
+  return (testing::TempDir() + "/marble_maze_" + name);
+}
+
+TEST(SimulateCli, TwoRunsWriteByteIdenticalTrajectories) {
+  const std::string schedule = tempPath("tilt.csv");
+  std::ofstream(schedule) << "t,roll,pitch\n0,0,0\n0.5,0.1,-0.05\n1.5,-0.1,0.1\n";
+  const std::string args = "--tilt-csv " + schedule + " --duration 2 --quiet --set substeps=2";
+  ASSERT_EQ(runSimulate(args + " --out " + tempPath("a.csv")).status, 0);
+  ASSERT_EQ(runSimulate(args + " --out " + tempPath("b.csv")).status, 0);
+  const std::string a = readFile(tempPath("a.csv")), b = readFile(tempPath("b.csv"));
+  EXPECT_GT(a.size(), 100000u);  // 2001 rows were written
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.substr(0, a.find('\n')), "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase");
+}
+
+TEST(SimulateCli, ATiltMovesTheMarbleAndTheSummarySaysWhatHappened) {
+  const Result r = runSimulate("--tilt 0.1,0 --duration 1");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("maze classic"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ran 1000 steps"), std::string::npos) << r.output;
+}
+
+TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"--bogus 1", "unknown option '--bogus'"},
+      {"--tilt 0.1", "--tilt: expected ROLL,PITCH"},
+      {"--duration abc", "--duration: expected a number"},
+      {"--set restitution=2", "restitution: 2 is out of range [0, 1]"},
+      {"--set nokey=1", "unknown parameter 'nokey'"},
+      {"--set model", "--set: expected KEY=VALUE"},
+      {"--maze /nonexistent/maze.yaml", "/nonexistent/maze.yaml"},
+      {"--tilt-csv /nonexistent/tilt.csv", "cannot read file"},
+      {"--duration", "--duration: needs a value"},
+  };
+  for (const auto& [args, message] : cases) {
+    const Result r = runSimulate(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << " -> " << r.output;
+  }
+}
+
+TEST(SimulateCli, HelpListsEveryKey) {
+  const Result r = runSimulate("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* key :
+       {"model", "step", "substeps", "restitution", "friction", "rolling_resistance",
+        "drag_coefficient", "start_position", "start_velocity", "tilt_limit", "tilt_rate_limit"})
+    EXPECT_NE(r.output.find(std::string("  ") + key), std::string::npos) << key;
+}
+
+}  // namespace

@@ -4,16 +4,16 @@
 all: build
 
 deps:
-	@scripts/install_deps.sh
+	@bash scripts/install_deps.sh
 
 build: deps
-	@scripts/build.sh
+	@bash scripts/build.sh
 
 test: build
-	@scripts/run_tests.sh
+	@bash scripts/run_tests.sh
 
 demo: build
-	@scripts/demo.sh
+	@bash scripts/demo.sh
 
 bench: build
 	@.ws/devel/lib/marble_maze/marble_maze_bench

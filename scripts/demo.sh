@@ -1,7 +1,18 @@
 #!/usr/bin/env bash
-# The demo: the headless runner on the default maze under a scripted tilt program.
+# The demo: roslaunch marble_maze demo.launch. With a display RViz opens (Ctrl-C ends it);
+# without one it runs headless, prints progress and a summary, and stops by itself.
 set -euo pipefail
+export PATH="/usr/bin:$PATH"
 cd "$(dirname "$0")/.."
-.ws/devel/lib/marble_maze/simulate --tilt-csv config/demo_tilt.csv --duration 20 \
-  --events /dev/stdout --out .ws/demo_trajectory.csv
-echo "trajectory written to .ws/demo_trajectory.csv"
+# shellcheck disable=SC1091
+set +u
+source .ws/devel/setup.bash
+set -u
+export ROS_HOME="${ROS_HOME:-$PWD/.ws/ros_home}"
+if [ -n "${DISPLAY:-}" ]; then
+  exec roslaunch marble_maze demo.launch "$@"
+fi
+echo "No display: running the demo headless for 30 s of simulated time."
+# The launch ends when the monitor has printed its summary; the timeout only guards a hang.
+timeout --signal=INT --kill-after=10 120 \
+  roslaunch marble_maze demo.launch rviz:=false headless:=true duration:=30 "$@"

@@ -6,6 +6,9 @@ packages=(
   build-essential cmake catkin ros-core-dev ros-message-generation ros-message-runtime
   libeigen3-dev libyaml-cpp-dev libgtest-dev googletest libbenchmark-dev
   python3-rostest python3-rosbag catkin-lint
+  libtf2-ros-dev libtf2-eigen-dev libvisualization-msgs-dev libgeometry-msgs-dev libstd-srvs-dev
+  python3-rospy python3-tf2-ros python3-std-srvs python3-visualization-msgs python3-geometry-msgs
+  rviz
 )
 
 missing=()

@@ -15,7 +15,7 @@ namespace marble_maze {
 /// Free, or held where the game ended for it.
 enum class MarblePhase { Free, InHole, AtGoal, OffBoard };
 
-struct MarbleState {
+struct Marble {
   Vec3 position = Vec3::Zero();          ///< m, world frame (centre)
   Vec3 velocity = Vec3::Zero();          ///< m/s, world frame
   Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world frame
@@ -50,7 +50,7 @@ class Simulation {
   const Maze& maze() const { return maze_; }
   const Params& params() const { return params_; }
   const Board& board() const { return board_; }
-  const MarbleState& marble() const { return marble_; }
+  const Marble& marble() const { return marble_; }
   double time() const { return static_cast<double>(steps_) * params_.step; }
   std::uint64_t steps() const { return steps_; }
   /// The events of the last step, in order.
@@ -77,7 +77,7 @@ class Simulation {
   Params params_;
   Board board_;
   ContactSolver solver_;
-  MarbleState marble_;
+  Marble marble_;
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame
   std::uint64_t steps_ = 0;

@@ -50,7 +50,7 @@ void Simulation::reset() {
 
 void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity,
                              const Vec3& angular_velocity) {
-  marble_ = MarbleState();
+  marble_ = Marble();
   marble_.position = frame_.toWorld(position_in_board + maze_.pivot());
   marble_.velocity = velocity;
   marble_.angular_velocity = angular_velocity;

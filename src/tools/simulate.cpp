@@ -153,7 +153,7 @@ std::ostream* openOutput(const std::string& path, std::unique_ptr<std::ofstream>
 }
 
 void writeRow(std::ostream& out, const mm::Simulation& sim) {
-  const mm::MarbleState& m = sim.marble();
+  const mm::Marble& m = sim.marble();
   char row[512];
   std::snprintf(
       row, sizeof row, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%s\n",
@@ -212,7 +212,7 @@ int run(const Options& o) {
   }
   if (!o.quiet) {
     std::ostream& s = (o.out == "-") ? std::cerr : std::cout;
-    const mm::MarbleState& m = sim->marble();
+    const mm::Marble& m = sim->marble();
     const mm::Vec3 b = sim->marbleInBoard();
     s << "maze " << sim->maze().name() << ": " << sim->maze().size().x() << " x "
       << sim->maze().size().y() << " x " << sim->maze().size().z() << " tiles, model "

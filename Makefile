@@ -1,5 +1,5 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
-.PHONY: all deps build test demo bench lint format clean
+.PHONY: all deps build test demo bench screenshot lint format clean
 
 all: build
 
@@ -17,6 +17,9 @@ demo: build
 
 bench: build
 	@.ws/devel/lib/marble_maze/marble_maze_bench
+
+screenshot: build
+	@bash scripts/screenshot.sh doc/demo.png
 
 lint: deps
 	@PATH=/usr/bin:$$PATH catkin_lint --strict .

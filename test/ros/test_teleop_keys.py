@@ -1,6 +1,8 @@
 """Unit tests of teleop_key's key handling: which way each key tilts the board, and the limits.
 
-Plain unittest, no ROS master: python3 -m unittest test/ros/test_teleop_keys.py
+Plain unittest, no ROS master: python3 test/ros/test_teleop_keys.py, or
+python3 -m unittest discover -s test/ros (not "-m unittest test/ros/...": the standard library's own
+`test` package shadows this folder). With --gtest_output=xml:FILE it writes JUnit XML for catkin.
 """
 import importlib.machinery
 import importlib.util
@@ -90,4 +92,9 @@ class DecodeKeysTest(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    if any(arg.startswith("--gtest_output=xml:") for arg in sys.argv):
+        # As catkin's run_tests calls it: rosunit writes the JUnit result file catkin collects.
+        import rosunit
+        rosunit.unitrun("marble_maze", "test_teleop_keys", "__main__")
+    else:
+        unittest.main()

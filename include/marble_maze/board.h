@@ -13,7 +13,8 @@ class Board {
 
   /// Back to the given tilt, at rest.
   void reset(double roll, double pitch);
-  /// Drive towards target angles (clamped to the tilt limit) at up to the tilt-rate limit.
+  /// Drive towards target angles (clamped to the tilt limit) like a servo: a first-order lag with
+  /// the response time, at up to the tilt-rate limit.
   void setTargetTilt(double roll, double pitch);
   /// Drive at the given rates (clamped to the tilt-rate limit) until the tilt limit stops them.
   void setTiltRate(double roll_rate, double pitch_rate);
@@ -37,6 +38,7 @@ class Board {
 
   double tilt_limit_;
   double tilt_rate_limit_;  // 0 = unlimited
+  double response_time_;    // 0 = reaches a target at once (within the rate limit)
   Drive drive_ = Drive::Target;
   double target_roll_ = 0, target_pitch_ = 0;
   double roll_rate_ = 0, pitch_rate_ = 0;

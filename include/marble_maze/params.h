@@ -40,6 +40,7 @@ struct Params {
   // Board.
   double tilt_limit = 0.17453292519943295;  ///< rad (10 degrees): |roll|, |pitch| never exceed it
   double tilt_rate_limit = 2.0;  ///< rad/s, 0 = unlimited (a board that snaps flings the marble)
+  double tilt_response_time = 0.05;  ///< s, time constant of the drive towards a target; 0 = none
   double initial_roll = 0.0;                ///< rad
   double initial_pitch = 0.0;               ///< rad
 

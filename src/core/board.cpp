@@ -6,7 +6,9 @@
 namespace marble_maze {
 
 Board::Board(const Params& params)
-    : tilt_limit_(params.tilt_limit), tilt_rate_limit_(params.tilt_rate_limit) {
+    : tilt_limit_(params.tilt_limit),
+      tilt_rate_limit_(params.tilt_rate_limit),
+      response_time_(params.tilt_response_time) {
   reset(params.initial_roll, params.initial_pitch);
 }
 
@@ -56,8 +58,15 @@ void Board::advance(double h) {
     new_roll = clampTilt(roll_ + roll_rate_ * h);
     new_pitch = clampTilt(pitch_ + pitch_rate_ * h);
   } else {
-    new_roll = roll_ + clampRate((target_roll_ - roll_) / h) * h;
-    new_pitch = pitch_ + clampRate((target_pitch_ - pitch_) / h) * h;
+    // The first-order lag solved exactly over the step, so that any step is stable; a target
+    // closer than rounding is taken as reached, so that the board comes to rest.
+    const double approach = response_time_ > 0 ? 1.0 - std::exp(-h / response_time_) : 1.0;
+    const auto follow = [&](double angle, double target) {
+      if (std::abs(target - angle) < 1e-12) return target;
+      return angle + clampRate((target - angle) * approach / h) * h;
+    };
+    new_roll = follow(roll_, target_roll_);
+    new_pitch = follow(pitch_, target_pitch_);
   }
   if (new_roll == roll_ && new_pitch == pitch_) {  // at rest: nothing to recompute
     angular_velocity_.setZero();

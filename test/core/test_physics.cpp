@@ -285,6 +285,7 @@ TEST(Board, TiltIsClampedToTheLimitAndRateLimited) {
   Params p;
   p.tilt_limit = 0.1;
   p.tilt_rate_limit = 1.0;
+  p.tilt_response_time = 0;  // straight to the target, as fast as the rate limit allows
   Board board(p);
   board.setTargetTilt(0.5, -0.5);
   board.advance(0.01);
@@ -298,6 +299,19 @@ TEST(Board, TiltIsClampedToTheLimitAndRateLimited) {
   board.setTiltRate(-5.0, 0);  // clamped to 1 rad/s
   board.advance(0.01);
   EXPECT_NEAR(board.roll(), 0.09, 1e-12);
+}
+
+TEST(Board, FollowsATargetLikeAFirstOrderServo) {
+  Params p;
+  p.tilt_rate_limit = 0;  // the lag alone
+  p.tilt_response_time = 0.05;
+  Board board(p);
+  board.setTargetTilt(0.1, 0);
+  for (int i = 0; i < 50; ++i) board.advance(0.001);  // one time constant
+  EXPECT_NEAR(board.roll(), 0.1 * (1 - std::exp(-1.0)), 1e-12);
+  for (int i = 0; i < 2000; ++i) board.advance(0.001);
+  EXPECT_DOUBLE_EQ(board.roll(), 0.1);  // comes to rest on the target
+  EXPECT_EQ(board.angularVelocity(), Vec3::Zero());
 }
 
 TEST(Board, RotationIsRollThenPitchAboutFixedAxes) {

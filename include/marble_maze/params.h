@@ -41,8 +41,8 @@ struct Params {
   double tilt_limit = 0.17453292519943295;  ///< rad (10 degrees): |roll|, |pitch| never exceed it
   double tilt_rate_limit = 2.0;  ///< rad/s, 0 = unlimited (a board that snaps flings the marble)
   double tilt_response_time = 0.05;  ///< s, time constant of the drive towards a target; 0 = none
-  double initial_roll = 0.0;                ///< rad
-  double initial_pitch = 0.0;               ///< rad
+  double initial_roll = 0.0;         ///< rad
+  double initial_pitch = 0.0;        ///< rad
 
   // Start state; without start_position the marble starts on the maze's start cell.
   bool has_start_position = false;
@@ -73,6 +73,9 @@ void setParam(Params& params, const std::string& key, const std::string& value);
 
 /// The key's current value as text, in the form setParam accepts.
 std::string getParam(const Params& params, const std::string& key);
+
+/// Reads a finite number that is the whole of `text` (spaces around it allowed); false otherwise.
+bool parseFiniteNumber(const std::string& text, double* value);
 
 /// Checks the values together (ranges, step against threshold); throws ParamError naming the key.
 void validate(const Params& params);

@@ -13,10 +13,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
 
 double parseNumber(const std::string& key, const std::string& text, double min, double max) {
-  std::istringstream in(text);
   double value = 0;
-  in >> value;
-  if (in.fail() || !(in >> std::ws).eof() || !std::isfinite(value))
+  if (!parseFiniteNumber(text, &value))
     throw ParamError(key + ": expected a number, got '" + text + "'");
   if (value < min || value > max) {
     std::ostringstream msg;
@@ -148,6 +146,12 @@ const Entry& find(const std::string& key) {
 }
 
 }  // namespace
+
+bool parseFiniteNumber(const std::string& text, double* value) {
+  std::istringstream in(text);
+  in >> *value;
+  return !in.fail() && (in >> std::ws).eof() && std::isfinite(*value);
+}
 
 double Params::marbleMass() const {
   return marble_density * 4.0 / 3.0 * kPi * marble_radius * marble_radius * marble_radius;

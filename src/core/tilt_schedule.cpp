@@ -1,19 +1,11 @@
 #include "marble_maze/tilt_schedule.h"
 
-#include <cmath>
 #include <fstream>
 #include <sstream>
 
+#include "marble_maze/params.h"
+
 namespace marble_maze {
-namespace {
-
-bool parseNumber(const std::string& text, double* value) {
-  std::istringstream in(text);
-  in >> *value;
-  return !in.fail() && (in >> std::ws).eof() && std::isfinite(*value);
-}
-
-}  // namespace
 
 TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& source) {
   TiltSchedule schedule;
@@ -29,10 +21,11 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
     std::istringstream row(line);
     for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
     Point p{};
-    const bool numeric = fields.size() == 3 && parseNumber(fields[0], &p.time) &&
-                         parseNumber(fields[1], &p.roll) && parseNumber(fields[2], &p.pitch);
+    const bool numeric = fields.size() == 3 && parseFiniteNumber(fields[0], &p.time) &&
+                         parseFiniteNumber(fields[1], &p.roll) &&
+                         parseFiniteNumber(fields[2], &p.pitch);
     if (!numeric) {
-      if (schedule.points_.empty() && fields.size() == 3 && !parseNumber(fields[0], &p.time))
+      if (schedule.points_.empty() && fields.size() == 3 && !parseFiniteNumber(fields[0], &p.time))
         continue;  // the header row
       throw error("expected three numbers t,roll,pitch (s, rad, rad), got '" + line + "'");
     }

@@ -1,10 +1,10 @@
 // The maze and the marble as RViz markers: a translation of the core's maze, no physics.
 #pragma once
 
-#include <string>
-
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <string>
 
 #include "marble_maze/maze.h"
 

@@ -1,12 +1,12 @@
 #include "maze_node.h"
 
+#include <tf2_eigen/tf2_eigen.h>
+#include <visualization_msgs/MarkerArray.h>
+
 #include <cmath>
 #include <iomanip>
 #include <set>
 #include <sstream>
-
-#include <tf2_eigen/tf2_eigen.h>
-#include <visualization_msgs/MarkerArray.h>
 
 #include "marble_maze/MarbleState.h"
 #include "marble_maze/MazeEvent.h"
@@ -50,10 +50,8 @@ double readRate(const ros::NodeHandle& pnh, const std::string& key, double fallb
   XmlRpc::XmlRpcValue value;
   if (!pnh.getParam(key, value)) return fallback;
   const std::string name = pnh.resolveName(key);
-  std::istringstream in(asText(value, name));
   double number = 0;
-  in >> number;
-  if (in.fail() || !(in >> std::ws).eof() || !std::isfinite(number))
+  if (!mm::parseFiniteNumber(asText(value, name), &number))
     throw std::runtime_error(name + ": expected a number");
   if (number < min || number > max) {
     std::ostringstream msg;
@@ -76,9 +74,9 @@ std::string readText(const ros::NodeHandle& pnh, const std::string& key,
 
 MazeNode::Settings MazeNode::readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   // Every private parameter must be one we know: a misspelt one would otherwise do nothing.
-  const std::set<std::string> node_keys = {
-      "maze",        "update_rate", "publish_rate", "marker_rate", "tilt_timeout",
-      "auto_reset",  "world_frame", "board_frame",  "marble_frame"};
+  const std::set<std::string> node_keys = {"maze",        "update_rate",  "publish_rate",
+                                           "marker_rate", "tilt_timeout", "auto_reset",
+                                           "world_frame", "board_frame",  "marble_frame"};
   std::set<std::string> known = node_keys;
   for (const mm::ParamInfo& info : mm::paramInfos()) known.insert(info.key);
   std::vector<std::string> names;
@@ -86,7 +84,8 @@ MazeNode::Settings MazeNode::readSettings(const ros::NodeHandle& pnh, mm::Scene*
   const std::string prefix = pnh.getNamespace() + "/";
   for (const std::string& name : names) {
     if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string key = name.substr(prefix.size(), name.find('/', prefix.size()) - prefix.size());
+    const std::string key =
+        name.substr(prefix.size(), name.find('/', prefix.size()) - prefix.size());
     if (!known.count(key)) throw std::runtime_error(name + ": unknown parameter");
   }
 
@@ -175,7 +174,8 @@ void MazeNode::onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg) {
   }
   const double limit = sim_->params().tilt_rate_limit;
   if (limit > 0 && (std::abs(msg->roll_rate) > limit || std::abs(msg->pitch_rate) > limit))
-    ROS_WARN_THROTTLE(1.0, "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
+    ROS_WARN_THROTTLE(1.0,
+                      "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
                       topic, msg->roll_rate, msg->pitch_rate, limit);
   queue(msg->header, {0, TiltCommand::Kind::Rates, msg->roll_rate, msg->pitch_rate});
 }
@@ -223,7 +223,8 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
 
 void MazeNode::stepUntil(const ros::Time& now) {
   const double step = sim_->params().step;
-  auto due = static_cast<std::int64_t>(std::floor(((now - origin_).toSec() - sim_->time()) / step + 1e-9));
+  auto due =
+      static_cast<std::int64_t>(std::floor(((now - origin_).toSec() - sim_->time()) / step + 1e-9));
   const auto most = static_cast<std::int64_t>(kMaxCatchUp / step);
   if (due > most) {
     ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
@@ -279,8 +280,8 @@ void MazeNode::publish(bool force) {
   const ros::Time stamp = stampOfStep(sim_->steps());
   // Each frame's stamps strictly increase: only a new step is published.
   const bool new_step = stamp > last_state_stamp_ || (force && last_state_stamp_.isZero());
-  if (new_step && (force || (stamp - last_state_stamp_).toSec() >= 1.0 / settings_.publish_rate -
-                                                                       0.5 * sim_->params().step)) {
+  if (new_step && (force || (stamp - last_state_stamp_).toSec() >=
+                                1.0 / settings_.publish_rate - 0.5 * sim_->params().step)) {
     last_state_stamp_ = stamp;
     const mm::Marble& m = sim_->marble();
     const mm::Mat3& board = sim_->board().rotation();
@@ -317,8 +318,8 @@ void MazeNode::publish(bool force) {
     state_pub_.publish(state);
   }
   if (stamp > last_marker_stamp_ &&
-      (force || (stamp - last_marker_stamp_).toSec() >= 1.0 / settings_.marker_rate -
-                                                          0.5 * sim_->params().step)) {
+      (force || (stamp - last_marker_stamp_).toSec() >=
+                    1.0 / settings_.marker_rate - 0.5 * sim_->params().step)) {
     last_marker_stamp_ = stamp;
     visualization_msgs::Marker marble =
         marbleMarker(sim_->params().marble_radius, settings_.marble_frame);

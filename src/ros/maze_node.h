@@ -2,12 +2,12 @@
 // It translates; the physics is all in the core.
 #pragma once
 
-#include <memory>
-#include <string>
-
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
+
+#include <memory>
+#include <string>
 
 #include "command_queue.h"
 #include "marble_maze/BoardTilt.h"
@@ -24,11 +24,11 @@ class MazeNode {
  private:
   struct Settings {
     std::string maze = "classic";
-    double update_rate = 200.0;   // Hz: how often ROS time is checked for steps due
-    double publish_rate = 50.0;   // Hz: marble_state and tf
-    double marker_rate = 10.0;    // Hz: marble_marker
-    double tilt_timeout = 0.0;    // s of ROS time without commands before the board levels; 0 off
-    double auto_reset = 0.0;      // s after the marble finishes before it is reset; 0 off
+    double update_rate = 200.0;  // Hz: how often ROS time is checked for steps due
+    double publish_rate = 50.0;  // Hz: marble_state and tf
+    double marker_rate = 10.0;   // Hz: marble_marker
+    double tilt_timeout = 0.0;   // s of ROS time without commands before the board levels; 0 off
+    double auto_reset = 0.0;     // s after the marble finishes before it is reset; 0 off
     std::string world_frame = "world", board_frame = "board", marble_frame = "marble";
   };
   static Settings readSettings(const ros::NodeHandle& pnh, marble_maze::Scene* scene);

@@ -66,10 +66,8 @@ Keys for --set (and for a maze file's physics section):
 }
 
 double parseDouble(const std::string& flag, const std::string& text) {
-  std::istringstream in(text);
   double value;
-  in >> value;
-  if (in.fail() || !(in >> std::ws).eof())
+  if (!mm::parseFiniteNumber(text, &value))
     throw UsageError(flag + ": expected a number, got '" + text + "'");
   return value;
 }

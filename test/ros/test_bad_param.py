@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""rostest of marble_maze_node's start-up checks (run by bad_param.test).
+
+The test starts the node itself, as a child process under the rostest master, with one bad
+private parameter at a time, and checks that it exits by itself (within EXIT_TIMEOUT of wall
+time) with a non-zero status and a FATAL message naming the parameter. A control run with good
+parameters must still be running after the same time, so that an exit is due to the parameter.
+Every run has its own node name (and so its own private namespace), which is chosen not to
+contain the words the messages are searched for.
+"""
+import os
+import signal
+import subprocess
+import sys
+import unittest
+
+import roslib.packages
+import rospy
+import rostest
+
+PKG = "marble_maze"
+EXIT_TIMEOUT = 20.0  # s of wall time: generous, for a loaded machine
+CONTROL_RUN = 3.0  # s: how long the control run must keep running
+
+
+def node_path():
+    paths = roslib.packages.find_node(PKG, "marble_maze_node")
+    assert paths, "marble_maze_node not found (is the workspace built and sourced?)"
+    return paths[0]
+
+
+class BadParamTest(unittest.TestCase):
+    def start(self, name, *params):
+        args = [node_path(), "__name:=" + name] + list(params)
+        # A fresh process group, so that a node that does not exit can be ended with what it
+        # started (rosconsole writes FATAL and ERROR to stderr: keep both streams).
+        return subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                text=True, start_new_session=True)
+
+    def stop(self, process):
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGINT)
+            try:
+                return process.communicate(timeout=10)[0]
+            except subprocess.TimeoutExpired:
+                os.killpg(process.pid, signal.SIGKILL)
+        return process.communicate()[0]
+
+    def check_refused(self, name, params, *words):
+        process = self.start(name, *params)
+        try:
+            output = process.communicate(timeout=EXIT_TIMEOUT)[0]
+        except subprocess.TimeoutExpired:
+            output = self.stop(process)
+            self.fail("the node still runs %g s after starting with %s; output:\n%s"
+                      % (EXIT_TIMEOUT, " ".join(params), output))
+        self.assertNotEqual(process.returncode, 0,
+                            "exit status 0 with %s; output:\n%s" % (" ".join(params), output))
+        self.assertIn("FATAL", output, output)
+        for word in words:
+            self.assertIn(word, output, "the message does not name %r:\n%s" % (word, output))
+        return output
+
+    def test_control_good_params_keep_running(self):
+        process = self.start("bp_control", "_restitution:=0.7", "_maze:=classic")
+        try:
+            process.wait(timeout=CONTROL_RUN)
+            self.fail("the node exited (status %s) with good parameters; output:\n%s"
+                      % (process.returncode, process.communicate()[0]))
+        except subprocess.TimeoutExpired:
+            pass
+        output = self.stop(process)
+        self.assertNotIn("FATAL", output)
+
+    def test_restitution_out_of_range(self):
+        output = self.check_refused("bp_one", ["_restitution:=2.0"], "restitution")
+        self.assertIn("/bp_one/", output)  # named in full, in the node's private namespace
+
+    def test_unknown_parameter(self):
+        self.check_refused("bp_two", ["_restitushun:=1"], "restitushun", "unknown")
+
+    def test_missing_maze_file(self):
+        self.check_refused("bp_three", ["_maze:=/nonexistent.yaml"], "maze", "/nonexistent.yaml")
+
+    def test_rate_out_of_range(self):
+        self.check_refused("bp_four", ["_publish_rate:=-5"], "publish_rate")
+
+    def test_unknown_model(self):
+        self.check_refused("bp_five", ["_model:=wooden"], "model", "wooden")
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_bad_param")
+    rostest.rosrun(PKG, "bad_param", BadParamTest, sys.argv)

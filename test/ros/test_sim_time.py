@@ -1,0 +1,270 @@
+#!/usr/bin/env python3
+"""rostest of marble_maze_node under a simulated clock (run by sim_time.test, /use_sim_time true).
+
+This test is the clock: it publishes /clock itself, from 100 s on in 10 ms ticks, at HALF the
+speed of the wall clock (one tick per 20 ms of wall time), so that a node timing itself by the
+wall clock would be caught by its rates and distances. It checks that
+  - before the clock starts, the node publishes no marble_state;
+  - marble_state stamps are never ahead of the clock (exact, in nanoseconds), the latest one is
+    within one publish period and a step of it, and there are 50 per second of clock time;
+  - under a tilt stamped on the clock, the marble rolls as the clock advances, exactly as the
+    physics says for clock time: board y = y0 - a/2 t (t + step), speed a t, with
+    a = 5/7 g sin(roll) (a rolling solid sphere, semi-implicit Euler with a 1 ms step), within
+    1e-6 m and 1e-6 m/s;
+  - while the clock stands still for a second of wall time, no marble_state comes and nothing
+    moves; when it goes on, so does the marble, as if there had been no pause (same formula).
+rospy in this process follows /clock too, so waits here use time.sleep (wall time).
+"""
+import math
+import sys
+import threading
+import time
+import unittest
+
+import rosgraph
+import rospy
+import rostest
+from rosgraph_msgs.msg import Clock
+
+from marble_maze.msg import BoardTilt, MarbleState
+
+PKG = "marble_maze"
+NODE = "/marble_maze"
+START_NS = 100 * 10**9  # the clock's first value
+TICK_NS = 10 * 10**6  # the clock's step
+TICK_WALL = 0.02  # s of wall time per tick: the clock runs at half speed
+STEP = 0.001  # s: the node's simulation step (default)
+PUBLISH_PERIOD = 0.02  # s: 1 / publish_rate (default 50 Hz)
+ROLL = 0.01  # rad: the tilt of the motion test
+G = 9.81
+WAIT = 10.0  # s of wall time: the longest wait for anything that should happen
+# The closed form below is exact for this integrator but for the marble's small settling into the
+# floor at the tilt (it matches to ~2e-8 m): these tolerances are tight enough that a tilt applied
+# one step (1 ms) late or early, about 7e-5 m and 7e-5 m/s off after a second, fails.
+POS_TOL = 1e-6  # m
+SPEED_TOL = 1e-6  # m/s
+
+
+def ns(stamp):
+    return stamp.secs * 10**9 + stamp.nsecs
+
+
+class Clock_:
+    """Publishes /clock: nothing until started, then ticks up to a target and holds there
+    (republishing the held value, which must not make the node step)."""
+
+    def __init__(self):
+        self.pub = rospy.Publisher("/clock", Clock, queue_size=10)
+        self.lock = threading.Lock()
+        self.started = False
+        self.now_ns = START_NS
+        self.target_ns = START_NS
+        self.published_ns = None  # the latest value published: the node cannot know a later one
+        threading.Thread(target=self._run, daemon=True).start()
+
+    def _run(self):
+        while not rospy.is_shutdown():
+            with self.lock:
+                if self.started:
+                    if self.now_ns + TICK_NS <= self.target_ns:
+                        self.now_ns += TICK_NS
+                    self.published_ns = self.now_ns
+                    value = self.now_ns
+                else:
+                    value = None
+            if value is not None:
+                self.pub.publish(Clock(clock=rospy.Time(0, value)))
+            time.sleep(TICK_WALL)
+
+    def start(self):
+        with self.lock:
+            self.started = True
+
+    def now(self):
+        with self.lock:
+            return self.now_ns
+
+    def published(self):
+        with self.lock:
+            return self.published_ns
+
+    def advance_to(self, target_ns):
+        """Ticks up to target_ns and returns when the clock is there (it then holds)."""
+        with self.lock:
+            self.target_ns = target_ns
+        deadline = time.time() + WAIT + 2 * TICK_WALL * (target_ns - self.now()) / TICK_NS
+        while self.now() < target_ns:
+            assert time.time() < deadline, "the clock thread does not tick"
+            time.sleep(0.005)
+
+
+class SimTimeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.lock = threading.Lock()
+        cls.states = []
+        cls.ahead = []  # (stamp, clock) of states stamped ahead of the clock published so far
+        cls.clock = Clock_()
+        cls.tilt_pub = rospy.Publisher("tilt", BoardTilt, queue_size=10)
+        rospy.Subscriber("marble_state", MarbleState, cls._on_state, queue_size=1000)
+        # Wait (wall time) until the node is up, and connected to our tilt publisher.
+        master = rosgraph.Master(rospy.get_name())
+        deadline = time.time() + 30
+        while time.time() < deadline:
+            _, subs, _ = master.getSystemState()
+            if NODE in dict(subs).get("/tilt", []) and cls.tilt_pub.get_num_connections() > 0:
+                break
+            time.sleep(0.1)
+        else:
+            raise AssertionError("%s did not subscribe tilt within 30 s" % NODE)
+
+    @classmethod
+    def _on_state(cls, msg):
+        clock = cls.clock.published()
+        with cls.lock:
+            if clock is None or ns(msg.header.stamp) > clock:
+                cls.ahead.append((ns(msg.header.stamp), clock))
+            cls.states.append(msg)
+
+    def count(self):
+        with self.lock:
+            return len(self.states)
+
+    def since(self, index):
+        with self.lock:
+            return list(self.states[index:])
+
+    def settle(self):
+        """Gives the node (wall) time to act on the clock's latest value."""
+        time.sleep(0.5)
+
+    def check_not_ahead(self):
+        with self.lock:
+            self.assertFalse(self.ahead, "states stamped ahead of the clock (stamp, clock) ns: %s"
+                             % self.ahead[:5])
+
+    def check_latest_follows_clock(self):
+        """The latest state is stamped within one publish period and a step of the clock."""
+        latest = self.since(-1)[0]
+        lag = (self.clock.now() - ns(latest.header.stamp)) * 1e-9
+        self.assertGreaterEqual(lag, 0.0)
+        self.assertLessEqual(lag, PUBLISH_PERIOD + STEP + 1e-9,
+                             "latest stamp %.3f s behind the clock" % lag)
+
+    def expected_y(self, stamp):
+        """Board y of the marble at `stamp` under ROLL from T0 (see the module's docstring)."""
+        t = max(0.0, (ns(stamp) - self.__class__.t0_ns) * 1e-9)
+        a = 5.0 / 7.0 * G * math.sin(ROLL)
+        return self.__class__.y0 - 0.5 * a * t * (t + STEP)
+
+    def check_motion(self, states):
+        a = 5.0 / 7.0 * G * math.sin(ROLL)
+        checked, worst_y, worst_v = 0, 0.0, 0.0
+        for m in states:
+            t = (ns(m.header.stamp) - self.__class__.t0_ns) * 1e-9
+            if t <= 0:
+                continue
+            checked += 1
+            self.assertAlmostEqual(m.roll, ROLL, delta=1e-12)
+            self.assertAlmostEqual(m.position_in_board.x, 0.0, delta=1e-9)
+            want = self.expected_y(m.header.stamp)
+            self.assertAlmostEqual(m.position_in_board.y, want, delta=POS_TOL,
+                                   msg="board y at %.3f s after the tilt" % t)
+            speed = math.hypot(m.velocity.y, m.velocity.z)
+            self.assertAlmostEqual(speed, a * t, delta=SPEED_TOL,
+                                   msg="speed at %.3f s after the tilt" % t)
+            worst_y = max(worst_y, abs(m.position_in_board.y - want))
+            worst_v = max(worst_v, abs(speed - a * t))
+        print("%d states checked: board y off by %.3g m at most, speed by %.3g m/s"
+              % (checked, worst_y, worst_v))
+        return checked
+
+    def test_1_nothing_before_the_clock(self):
+        time.sleep(1.0)
+        self.assertEqual(self.count(), 0, "marble_state published before /clock started")
+        self.assertTrue(rospy.get_param("/use_sim_time"))
+        self.assertEqual(rospy.Time.now(), rospy.Time(0))
+
+    def test_2_stamps_follow_the_clock(self):
+        self.clock.start()
+        deadline = time.time() + WAIT
+        while self.count() == 0:
+            self.assertLess(time.time(), deadline, "no marble_state after /clock started")
+            time.sleep(0.01)
+        first = self.since(0)[0]
+        self.assertGreaterEqual(ns(first.header.stamp), START_NS)
+        begin = self.clock.now()
+        self.clock.advance_to(begin + 50 * TICK_NS)  # 0.5 s of clock time, 1 s of wall time
+        self.settle()
+        states = self.since(0)
+        stamps = [ns(m.header.stamp) for m in states]
+        self.assertTrue(all(b > a for a, b in zip(stamps, stamps[1:])), "stamps not increasing")
+        # 50 states per second of clock time (not of wall time, which would make 100 here).
+        window = [s for s in stamps if s > begin]
+        rate = len(window) / ((self.clock.now() - begin) * 1e-9)
+        self.assertGreater(rate, 40.0)
+        self.assertLess(rate, 51.0)
+        self.check_latest_follows_clock()
+        self.check_not_ahead()
+        # The marble rests at the start of a level board meanwhile.
+        for m in states:
+            self.assertEqual((m.roll, m.pitch), (0.0, 0.0))
+            self.assertEqual((m.position_in_board.x, m.position_in_board.y), (0.0, 0.0))
+
+    def test_3_rolls_as_the_clock_advances(self):
+        # A tilt stamped 0.2 s of clock time ahead: applied at exactly that step.
+        t0_ns = self.clock.now() + 20 * TICK_NS
+        self.__class__.t0_ns = t0_ns
+        # The step starting at T0 tilts the board at once (no rate limit): the marble's centre,
+        # 6 mm above the pivot, is then 6 mm x sin(roll) along the board's y.
+        self.__class__.y0 = 0.006 * math.sin(ROLL)
+        msg = BoardTilt(roll=ROLL, pitch=0.0)
+        msg.header.stamp = rospy.Time(0, t0_ns)
+        for _ in range(3):
+            self.tilt_pub.publish(msg)
+            time.sleep(0.02)
+        self.clock.advance_to(t0_ns)
+        self.settle()
+        before = self.since(0)
+        self.assertEqual(before[-1].roll, 0.0, "the tilt was applied before its stamp")
+        index = self.count()
+        self.clock.advance_to(t0_ns + 80 * TICK_NS)  # 0.8 s of clock time
+        self.settle()
+        states = self.since(index)
+        self.assertGreater(self.check_motion(states), 30)
+        self.assertLess(states[-1].position_in_board.y, -0.02)  # it did roll, about 22 mm
+        self.check_latest_follows_clock()
+        self.check_not_ahead()
+
+    def test_4_clock_stands_still(self):
+        held = self.clock.now()
+        self.settle()
+        index = self.count()
+        last = self.since(-1)[0]
+        time.sleep(1.0)  # the clock holds (republished) for a second of wall time
+        new = self.since(index)
+        self.assertEqual(new, [], "marble_state while the clock stood still: stamps %s"
+                         % [m.header.stamp.to_sec() for m in new])
+        self.assertEqual(self.clock.now(), held)
+        self.assertLessEqual(ns(last.header.stamp), held)
+        self.check_latest_follows_clock()
+
+    def test_5_clock_goes_on(self):
+        held = self.clock.now()
+        last = self.since(-1)[0]
+        index = self.count()
+        self.clock.advance_to(held + 40 * TICK_NS)  # 0.4 s more
+        self.settle()
+        states = self.since(index)
+        self.assertTrue(states, "no marble_state after the clock went on")
+        self.assertGreater(ns(states[0].header.stamp), held)
+        self.assertLess(states[-1].position_in_board.y, last.position_in_board.y - 0.005)
+        # As if the clock had never stopped: the same trajectory in clock time.
+        self.assertGreater(self.check_motion(states), 15)
+        self.check_latest_follows_clock()
+        self.check_not_ahead()
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_sim_time")
+    rostest.rosrun(PKG, "sim_time", SimTimeTest, sys.argv)

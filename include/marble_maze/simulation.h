@@ -59,7 +59,8 @@ class Simulation {
   GridFrame gridFrame() const;
   /// The marble's centre in the board frame.
   Vec3 marbleInBoard() const;
-  /// Kinetic plus potential energy (J), potential measured from the world's z = 0.
+  /// Kinetic plus potential energy (J), potential measured from the world's z = 0, both at the
+  /// instant the integrator's velocity belongs to (half a substep back).
   double energy() const;
   /// The marble's start position in the board frame.
   Vec3 startInBoard() const;

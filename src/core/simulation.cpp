@@ -57,10 +57,15 @@ void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity
 }
 
 double Simulation::energy() const {
+  // Semi-implicit Euler's velocity is the velocity half a substep back, where the marble was at
+  // p - v h/2: kinetic and potential energy are taken together there. (With both taken now, a
+  // bounce would seem to gain m g h |v_z|, which the scheme never does.)
   const double m = params_.marbleMass();
+  const double h = params_.step / params_.substeps;
+  const Vec3 position = marble_.position - 0.5 * h * marble_.velocity;
   return 0.5 * m * marble_.velocity.squaredNorm() +
          0.5 * params_.marbleInertia() * marble_.angular_velocity.squaredNorm() +
-         m * params_.gravity * marble_.position.z();
+         m * params_.gravity * position.z();
 }
 
 void Simulation::step() {

@@ -240,6 +240,59 @@ TEST(Impact, AHundredMetresPerSecondNeverTunnelsThroughAFiveMillimetreWall) {
   }
 }
 
+TEST(Impact, ElasticImpactsAtWallsEdgesAndCornersNeverAddEnergy) {
+  // e = 1 and no friction: every impact, alone or several at once, may only keep the energy
+  // (contacts slower than the bounce threshold lose a little). Throws in all directions from
+  // the classic maze's start, which runs into walls, posts, edges and corners.
+  Scene scene = loadScene("classic");
+  scene.params.model = Model::Smooth;
+  scene.params.restitution = 1.0;
+  int impacts = 0;
+  for (int k = 0; k < 24; ++k) {
+    const double angle = 2 * kPi * k / 24;
+    Simulation sim(scene);
+    sim.placeMarble(sim.startInBoard() + Vec3(0, 0, 0.004),
+                    {1.5 * std::cos(angle), 1.5 * std::sin(angle), 0.3});
+    const double energy0 = sim.energy();
+    double rise = 0;
+    while (sim.time() < 1.5 && sim.marble().phase == MarblePhase::Free) {
+      sim.step();
+      rise = std::max(rise, sim.energy() - energy0);
+      impacts += static_cast<int>(sim.events().size());
+    }
+    EXPECT_LE(rise, 1e-9 * energy0) << "throw " << k;  // J
+  }
+  EXPECT_GT(impacts, 50);  // the throws did meet walls, posts, edges and corners
+}
+
+// --- Rolling resistance and drag ---------------------------------------------------------------
+
+TEST(Resistance, RollingResistanceDeceleratesAtFiveSeventhsCrrG) {
+  // A rolling sphere under a resisting torque c_rr N r: a = -(5/7) c_rr g.
+  Params p = placed(model(Model::Rolling), {-0.9, 0, kRadius}, {0.5, 0, 0});
+  p.rolling_resistance = 0.01;
+  Simulation sim(test::flatFloor(200, 10, 0.01, p));
+  sim.placeMarble(p.start_position, p.start_velocity, {0, 0.5 / kRadius, 0});  // rolling
+  run(&sim, 2.0);
+  const double expected = 0.5 - 5.0 / 7.0 * 0.01 * 9.81 * 2.0;
+  EXPECT_NEAR(sim.marble().velocity.x(), expected, 0.005 * expected);  // 0.5%
+}
+
+TEST(Resistance, QuadraticAirDragSlowsAsOneOverOnePlusKVT) {
+  // Free flight without gravity under F = -1/2 rho C_d A |v| v: v(t) = v0 / (1 + k v0 t), with
+  // k = rho C_d A / (2 m).
+  Params p = placed(model(Model::Smooth), {0, 0, 1.0}, {50, 0, 0});
+  p.gravity = 0;
+  p.drag_coefficient = 0.47;
+  Simulation sim(test::flatFloor(10, 10, 0.01, p));
+  run(&sim, 1.0);
+  const double k = p.air_density * p.drag_coefficient * kPi * kRadius * kRadius /
+                   (2 * p.marbleMass());
+  const double expected = 50 / (1 + k * 50 * 1.0);
+  EXPECT_NEAR(sim.marble().velocity.x(), expected, 0.001 * expected);  // 0.1%
+  EXPECT_LT(expected, 45);  // the drag matters at this speed: the test can tell it from none
+}
+
 // --- Holes and the goal ----------------------------------------------------------------------
 
 TEST(Finish, AHoleSwallowsTheMarbleAndIsReported) {

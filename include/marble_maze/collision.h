@@ -49,7 +49,13 @@ struct SweepHit {
 /// Sweeps the sphere along a straight path and returns the first tile it hits while approaching
 /// it; tiles already within radius + margin at the start are left to findContacts. The path is
 /// walked in pieces no longer than the radius, so the cost grows with its length, never with the
-/// maze, and no wall is skipped at any speed.
+/// maze, and no wall is skipped at any speed. Start and path are in the grid frame, so that the
+/// path can be the marble's motion relative to a board that moves meanwhile; the contact comes
+/// back in the world through `frame`, the board's pose at the end of the path.
+bool sweepSphereInGrid(const Maze& maze, const GridFrame& frame, const Vec3& from,
+                       const Vec3& path, double radius, double margin, SweepHit* hit);
+
+/// The same for a board at rest in `frame`, with start and path in the world.
 bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,
                  const Vec3& displacement, double radius, double margin, SweepHit* hit);
 

@@ -67,8 +67,10 @@ class Simulation {
 
  private:
   void substep(double h, double start_time);
-  void move(double h, double start_time, const Vec3& start_velocity);
+  void move(double h, double start_time, const GridFrame& start, Vec3 change);
   void pushOut();
+  void takeUpHeldAcceleration(Vec3* change) const;
+  Vec3 keepOutOfContacts(Vec3* chord) const;
   void respond(const std::vector<Contact>& contacts, const Vec3& reference, double time);
   void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);

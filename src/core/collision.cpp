@@ -219,8 +219,12 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
 
 bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,
                  const Vec3& displacement, double radius, double margin, SweepHit* hit) {
-  const Vec3 o = frame.toGrid(centre);
-  const Vec3 d = frame.rotation.transpose() * displacement;
+  return sweepSphereInGrid(maze, frame, frame.toGrid(centre),
+                           frame.rotation.transpose() * displacement, radius, margin, hit);
+}
+
+bool sweepSphereInGrid(const Maze& maze, const GridFrame& frame, const Vec3& o, const Vec3& d,
+                       double radius, double margin, SweepHit* hit) {
   const double length = d.norm();
   if (!(length > 0)) return false;
   const double touching = (radius + margin) * (radius + margin);

@@ -88,6 +88,7 @@ Vec3 Simulation::acceleration(const Vec3& velocity) const {
 }
 
 void Simulation::substep(double h, double start_time) {
+  const GridFrame start = frame_;  // the board's pose at the start of the substep
   board_.advance(h);
   frame_ = gridFrame();
   if (marble_.phase != MarblePhase::Free) {  // a finished marble rides along with the board
@@ -95,17 +96,22 @@ void Simulation::substep(double h, double start_time) {
     marble_.velocity = frame_.surfaceVelocity(marble_.position);
     return;
   }
-  // Contacts at the start, against the board's new pose.
-  findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin, &contacts_);
+  // Contacts against the board where it is at the start, moving as it moves over the substep.
+  GridFrame moving = start;
+  moving.angular_velocity = frame_.angular_velocity;
+  findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin,
+               &contacts_);
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
   // Forces: semi-implicit Euler, the new velocity moves the marble.
   const Vec3 start_velocity = marble_.velocity;
-  marble_.velocity += acceleration(marble_.velocity) * h;
+  Vec3 change = acceleration(marble_.velocity) * h;
+  marble_.velocity += change;
   // Impacts and their restitution are decided by the approach before this substep's forces, so
   // that gravity pressing a resting marble down is never bounced.
   respond(contacts_, start_velocity, start_time);
-  move(h, start_time, start_velocity);
+  takeUpHeldAcceleration(&change);
+  move(h, start_time, start, change);
   if (params_.model == Model::Rolling) {
     const double angle = marble_.angular_velocity.norm() * h;
     if (angle > 0)
@@ -117,8 +123,8 @@ void Simulation::substep(double h, double start_time) {
 }
 
 void Simulation::pushOut() {
-  // The board turning into the marble, or rounding, can leave it overlapping a tile: move it out
-  // along the contact normals, without touching its velocity.
+  // Rounding can leave the marble overlapping a tile by a hair: move it out along the contact
+  // normals, without touching its velocity.
   Vec3 moved = Vec3::Zero();
   for (const Contact& c : contacts_) {
     const double depth = c.depth - moved.dot(c.normal);
@@ -144,22 +150,52 @@ void Simulation::respond(const std::vector<Contact>& contacts, const Vec3& refer
           {time, EventKind::Collision, contacts[i].tile, outcomes_[i].approach_speed});
 }
 
-void Simulation::move(double h, double start_time, const Vec3& start_velocity) {
+void Simulation::takeUpHeldAcceleration(Vec3* change) const {
+  // A contact that holds the marble (no bounce) takes up the acceleration into it for the rest
+  // of the substep, as the floor does gravity.
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const double into = change->dot(contacts_[i].normal);
+    if (!outcomes_[i].bounce && outcomes_[i].normal_impulse > 0 && into < 0)
+      *change -= into * contacts_[i].normal;
+  }
+}
+
+Vec3 Simulation::keepOutOfContacts(Vec3* chord) const {
+  // The straight path may not run into a tile the marble touches, whatever the parabola's
+  // velocity at the impact said: a path into it would end inside the tile.
+  Vec3 correction = Vec3::Zero();
+  for (const Contact& c : contacts_) {
+    const double into = (*chord + correction - c.surface_velocity).dot(c.normal);
+    if (into < 0) correction -= into * c.normal;
+  }
+  *chord += correction;
+  return correction;
+}
+
+void Simulation::move(double h, double start_time, const GridFrame& start, Vec3 change) {
   // Semi-implicit Euler moves the marble by h times its new velocity, which is its velocity at
   // mid-substep: over the substep it follows the parabola of the constant acceleration
-  // change / h, so an impact at fraction s meets it at v + (s - 1/2) change.
-  Vec3 change = marble_.velocity - start_velocity;
+  // change / h, so an impact at fraction s meets it at v + (s - 1/2) change. The path is swept
+  // on the board, from where the marble was on it at the start (the board then in its start
+  // pose) to where it will be at the end, so that a board moving meanwhile is swept too.
   Vec3 chord = marble_.velocity;  // mean velocity over what is left of the substep
+  marble_.velocity += keepOutOfContacts(&chord);
+  Vec3 from = start.toGrid(marble_.position);
   double s = 0;
   for (int impact = 0; impact < kMaxImpactsPerSubstep; ++impact) {
-    const Vec3 path = chord * ((1 - s) * h);
+    // After an impact the marble stands where the board carries it by the substep's end; from
+    // there it moves only as fast as it moves relative to the board.
+    const Vec3 carried = s > 0 ? frame_.surfaceVelocity(marble_.position) : Vec3::Zero();
+    const Vec3 to = marble_.position + (chord - carried) * ((1 - s) * h);
+    const Vec3 path = frame_.toGrid(to) - from;
     SweepHit hit;
-    if (!sweepSphere(maze_, frame_, marble_.position, path, params_.marble_radius, kContactMargin,
-                     &hit)) {
-      marble_.position += path;
+    if (!sweepSphereInGrid(maze_, frame_, from, path, params_.marble_radius, kContactMargin,
+                           &hit)) {
+      marble_.position = to;
       return;
     }
-    marble_.position += path * hit.fraction;
+    from += path * hit.fraction;
+    marble_.position = frame_.toWorld(from);
     s += (1 - s) * hit.fraction;
     const Vec3 at_impact = marble_.velocity + (s - 0.5) * change;
     findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin,
@@ -169,16 +205,10 @@ void Simulation::move(double h, double start_time, const Vec3& start_velocity) {
     if (!found) contacts_.push_back(hit.contact);
     marble_.velocity = at_impact;
     respond(contacts_, at_impact, start_time + s * h);
-    // A contact that holds the marble (no bounce) takes up the acceleration into it for the
-    // rest of the substep, as a resting contact does.
-    for (std::size_t i = 0; i < contacts_.size(); ++i) {
-      const double into = change.dot(contacts_[i].normal);
-      if (!outcomes_[i].bounce && outcomes_[i].normal_impulse > 0 && into < 0)
-        change -= into * contacts_[i].normal;
-    }
+    takeUpHeldAcceleration(&change);
     const Vec3 after = marble_.velocity;
-    marble_.velocity = after + (0.5 - s) * change;
     chord = after + (0.5 * (1 - s)) * change;
+    marble_.velocity = after + (0.5 - s) * change + keepOutOfContacts(&chord);
   }
 }
 

@@ -18,14 +18,14 @@ struct TiltCommand {
 class CommandQueue {
  public:
   /// Keeps the queue in stamp order; equal stamps stay in arrival order. Returns false, dropping
-  /// the oldest command, when the queue was full.
+  /// the command stamped furthest ahead (the least urgent), when the queue was full.
   bool push(const TiltCommand& command) {
     const auto later = std::upper_bound(
         queue_.begin(), queue_.end(), command.stamp,
         [](double stamp, const TiltCommand& queued) { return stamp < queued.stamp; });
     queue_.insert(later, command);
     if (queue_.size() <= kCapacity) return true;
-    queue_.pop_front();
+    queue_.pop_back();
     return false;
   }
 

@@ -17,8 +17,9 @@ namespace mm = marble_maze;
 
 namespace {
 
-// At most this much simulated time is caught up in one callback; a longer stall (a suspended
-// process, a jump of the clock) is skipped with a warning rather than replayed in a burst.
+// At most this much simulated time (or five timer periods, if longer) is caught up in one
+// callback; a longer stall (a suspended process, a jump of the clock) is skipped with a warning
+// rather than replayed in a burst.
 constexpr double kMaxCatchUp = 1.0;  // s
 
 /// A parameter's value as the text the core's parameter table reads ("0.7", "rolling",
@@ -148,7 +149,16 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
 }
 
 ros::Time MazeNode::stampOfStep(std::uint64_t step) const {
-  return origin_ + ros::Duration(static_cast<double>(step) * sim_->params().step);
+  return stampOfTime(static_cast<double>(step) * sim_->params().step);
+}
+
+ros::Time MazeNode::stampOfTime(double sim_time) const {
+  return origin_ + ros::Duration(sim_time - static_cast<double>(anchor_step_) * sim_->params().step);
+}
+
+void MazeNode::anchor(const ros::Time& now) {
+  origin_ = now;
+  anchor_step_ = sim_->steps();
 }
 
 void MazeNode::onTilt(const marble_maze::BoardTilt::ConstPtr& msg) {
@@ -186,7 +196,7 @@ void MazeNode::queue(const std_msgs::Header& header, TiltCommand command) {
   last_command_ = now;
   levelled_after_timeout_ = false;
   if (!commands_.push(command))
-    ROS_WARN_THROTTLE(1.0, "tilt commands stamped far ahead fill the queue; dropped the oldest");
+    ROS_WARN_THROTTLE(1.0, "tilt commands stamped far ahead fill the queue; dropped the one furthest ahead");
 }
 
 void MazeNode::apply(const TiltCommand& command) {
@@ -199,13 +209,19 @@ void MazeNode::apply(const TiltCommand& command) {
 void MazeNode::onTimer(const ros::TimerEvent&) {
   const ros::Time now = ros::Time::now();
   if (now.isZero()) return;  // a simulated clock that has not started
+  if (origin_.isZero()) {  // the first tick of a running clock
+    anchor(now);
+    publish(true);
+    return;
+  }
   const ros::Time sim_now = stampOfStep(sim_->steps());
-  if (origin_.isZero() || now + ros::Duration(1.0) < sim_now) {
-    if (!origin_.isZero())
-      ROS_WARN("ROS time went back by %.3f s (a bag looping?); following it",
-               (sim_now - now).toSec());
-    origin_ = now - ros::Duration(sim_->time());
+  if (now < sim_now) {  // steps are only ever taken up to now: the clock went back
+    ROS_WARN("ROS time went back by %.3f s (a bag looping? a restarted clock?); following it",
+             (sim_now - now).toSec());
+    anchor(now);
     commands_.clear();
+    if (!last_command_.isZero()) last_command_ = now;
+    if (!finished_at_.isZero()) finished_at_ = now;
     last_state_stamp_ = last_marker_stamp_ = ros::Time();
     publish(true);
     return;
@@ -223,9 +239,10 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
 
 void MazeNode::stepUntil(const ros::Time& now) {
   const double step = sim_->params().step;
-  auto due =
-      static_cast<std::int64_t>(std::floor(((now - origin_).toSec() - sim_->time()) / step + 1e-9));
-  const auto most = static_cast<std::int64_t>(kMaxCatchUp / step);
+  const auto stepped = static_cast<std::int64_t>(sim_->steps() - anchor_step_);
+  auto due = static_cast<std::int64_t>(std::floor((now - origin_).toSec() / step + 1e-9)) - stepped;
+  const double most_time = std::max(kMaxCatchUp, 5.0 / settings_.update_rate);
+  const auto most = static_cast<std::int64_t>(most_time / step);
   if (due > most) {
     ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
                       (due - most) * step);
@@ -249,7 +266,7 @@ void MazeNode::stepUntil(const ros::Time& now) {
 void MazeNode::publishEvents() {
   for (const mm::Event& e : sim_->events()) {
     marble_maze::MazeEvent msg;
-    msg.header.stamp = origin_ + ros::Duration(e.time);
+    msg.header.stamp = stampOfTime(e.time);
     msg.header.frame_id = settings_.board_frame;
     switch (e.kind) {
       case mm::EventKind::Collision:
@@ -350,8 +367,12 @@ bool MazeNode::onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response&
 bool MazeNode::onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
   if (paused_) {
     paused_ = false;
-    // The simulation takes up where it stopped: the paused time is not simulated.
-    origin_ += ros::Time::now() - paused_at_;
+    // The simulation takes up where it stopped: the paused time is not simulated, nor does it
+    // count towards the tilt timeout or the auto reset.
+    const ros::Duration paused = ros::Time::now() - paused_at_;
+    origin_ += paused;
+    if (!last_command_.isZero()) last_command_ += paused;
+    if (!finished_at_.isZero()) finished_at_ += paused;
   }
   res.success = true;
   res.message = "running";

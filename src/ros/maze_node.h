@@ -46,12 +46,16 @@ class MazeNode {
   void publish(bool force);
   void publishEvents();
   ros::Time stampOfStep(std::uint64_t step) const;
+  ros::Time stampOfTime(double sim_time) const;
+  /// Ties the simulation's current step to ROS time `now`.
+  void anchor(const ros::Time& now);
 
   Settings settings_;
   std::unique_ptr<marble_maze::Simulation> sim_;
   CommandQueue commands_;
 
-  ros::Time origin_;  // ROS time of the simulation's step 0; zero until the clock runs
+  ros::Time origin_;  // ROS time of step anchor_step_; zero until the clock runs
+  std::uint64_t anchor_step_ = 0;
   ros::Time paused_at_;
   bool paused_ = false;
   ros::Time last_command_;

@@ -1,5 +1,6 @@
 // simulate: the headless runner. Runs the physics core without ROS on a maze, under a constant
 // tilt or a tilt program, and writes the trajectory as CSV and the events.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -169,18 +170,25 @@ std::string describe(const mm::Event& e) {
 }
 
 int run(const Options& o) {
-  mm::Params defaults;
-  // The board starts where the tilt program starts, so a constant tilt is an incline from t = 0.
-  defaults.initial_roll = o.tilt.at(0).roll;
-  defaults.initial_pitch = o.tilt.at(0).pitch;
   mm::Scene scene;
+  bool initial_tilt_set = false;
   try {
-    scene = mm::loadScene(o.maze, defaults);
-    for (const auto& [key, value] : o.sets) mm::setParam(scene.params, key, value);
+    scene = mm::loadScene(o.maze);
+    for (const auto& [key, value] : o.sets) {
+      mm::setParam(scene.params, key, value);
+      initial_tilt_set = initial_tilt_set || key == "initial_roll" || key == "initial_pitch";
+    }
   } catch (const mm::MazeFileError& e) {
     throw UsageError(e.what());
   } catch (const mm::ParamError& e) {
     throw UsageError(std::string("--set ") + e.what());
+  }
+  // The board starts where the tilt program starts (within the tilt limit, as every tilt), so
+  // that a constant tilt is an incline from t = 0.
+  if (!initial_tilt_set) {
+    const double limit = scene.params.tilt_limit;
+    scene.params.initial_roll = std::clamp(o.tilt.at(0).roll, -limit, limit);
+    scene.params.initial_pitch = std::clamp(o.tilt.at(0).pitch, -limit, limit);
   }
   std::unique_ptr<mm::Simulation> sim;
   try {

@@ -293,6 +293,53 @@ TEST(Resistance, QuadraticAirDragSlowsAsOneOverOnePlusKVT) {
   EXPECT_LT(expected, 45);  // the drag matters at this speed: the test can tell it from none
 }
 
+// --- Extremes -----------------------------------------------------------------------------------
+
+/// The lowest the marble's centre gets below resting height on the floor, in the board frame.
+double deepestSink(Simulation* sim, int steps) {
+  double deepest = 0;
+  for (int i = 0; i < steps && sim->marble().phase == MarblePhase::Free; ++i) {
+    sim->step();
+    deepest = std::max(deepest, kRadius - sim->marbleInBoard().z());
+  }
+  EXPECT_EQ(sim->marble().phase, MarblePhase::Free);
+  return deepest;
+}
+
+TEST(Extremes, ABoardTurningAwayFastCarriesTheMarbleWithoutLettingItSink) {
+  for (double step : {0.001, 0.01}) {
+    Params p = placed(model(Model::Rolling), {0.12, 0, kRadius});
+    p.step = step;
+    p.bounce_threshold = 2 * p.gravity * step;
+    p.tilt_rate_limit = 0;
+    p.tilt_limit = 1.0;
+    Simulation sim(test::flatFloor(40, 10, 0.01, p));
+    sim.setTiltRate(0, 2.0);  // the +x end, under the marble, drops at 0.24 m/s
+    EXPECT_LT(deepestSink(&sim, static_cast<int>(0.2 / step)), 1e-6) << "step " << step;  // m
+  }
+}
+
+TEST(Extremes, ABoardSnappingToATiltNeverPushesTheMarbleThroughTheFloor) {
+  for (double target : {-0.17, 0.17}) {
+    Params p = placed(model(Model::Smooth), {0.05, 0, kRadius});
+    p.tilt_rate_limit = 0;
+    p.tilt_response_time = 0;  // the whole tilt in one step: 170 rad/s
+    Simulation sim(test::flatFloor(40, 10, 0.01, p));
+    sim.setTargetTilt(0, target);
+    EXPECT_LT(deepestSink(&sim, 300), 1e-6) << "pitch " << target;  // m
+  }
+}
+
+TEST(Extremes, AMarbleLeavingTheFloorAtALongStepNeverEndsInIt) {
+  for (double step : {0.001, 0.02, 0.1}) {
+    Params p = placed(model(Model::Smooth), {0, 0, kRadius + 3e-7}, {0, 0, 0.008});
+    p.step = step;
+    p.bounce_threshold = 2 * p.gravity * step;
+    Simulation sim(test::flatFloor(10, 10, 0.01, p));
+    EXPECT_LT(deepestSink(&sim, 20), 1e-6) << "step " << step;  // m
+  }
+}
+
 // --- Holes and the goal ----------------------------------------------------------------------
 
 TEST(Finish, AHoleSwallowsTheMarbleAndIsReported) {

@@ -54,6 +54,19 @@ TEST(SimulateCli, ATiltMovesTheMarbleAndTheSummarySaysWhatHappened) {
   EXPECT_NE(r.output.find("ran 1000 steps"), std::string::npos) << r.output;
 }
 
+TEST(SimulateCli, ATiltBeyondTheLimitIsClampedLikeAnyTilt) {
+  const std::string out = tempPath("steep.csv");
+  ASSERT_EQ(runSimulate("--tilt 0.5,0 --duration 0.01 --quiet --out " + out).status, 0);
+  const std::string rows = readFile(out);
+  const std::string first = rows.substr(rows.find('\n') + 1);
+  // roll, the 11th column, starts at the 10 degree limit
+  std::istringstream row(first.substr(0, first.find('\n')));
+  std::string field;
+  for (int i = 0; i < 11; ++i) std::getline(row, field, ',');
+  EXPECT_NEAR(std::stod(field), 0.17453292519943295, 1e-8);
+  EXPECT_EQ(runSimulate("--tilt 0.25,0 --set tilt_limit=0.3 --duration 0.01 --quiet").status, 0);
+}
+
 TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
   const std::pair<std::string, std::string> cases[] = {
       {"--bogus 1", "unknown option '--bogus'"},

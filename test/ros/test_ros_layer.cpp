@@ -24,11 +24,14 @@ TEST(CommandQueue, AppliesCommandsInStampOrderWhenDue) {
   EXPECT_EQ(queue.size(), 1u);  // the 3 s command waits for its time
 }
 
-TEST(CommandQueue, DropsTheOldestWhenFull) {
+TEST(CommandQueue, WhenFullDropsTheCommandStampedFurthestAhead) {
   CommandQueue queue;
   for (int i = 0; i < 10000; ++i) EXPECT_TRUE(queue.push({1.0 + i, TiltCommand::Kind::Angles}));
   EXPECT_FALSE(queue.push({0.5, TiltCommand::Kind::Angles, 0.5, 0}));
   EXPECT_EQ(queue.size(), 10000u);
+  std::vector<double> first;
+  queue.applyDue(1.0, [&](const TiltCommand& c) { first.push_back(c.stamp); });
+  EXPECT_EQ(first, (std::vector<double>{0.5, 1.0}));  // the most urgent one was kept
 }
 
 TEST(MazeMarkers, OneCubeListPerKindAndSizeWithStableIds) {

@@ -71,6 +71,7 @@ class Simulation {
   void pushOut();
   void takeUpHeldAcceleration(Vec3* change) const;
   Vec3 keepOutOfContacts(Vec3* chord) const;
+  void keepOnHeldContacts(const GridFrame& start, Vec3* path) const;
   void respond(const std::vector<Contact>& contacts, const Vec3& reference, double time);
   void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);

@@ -5,9 +5,11 @@
 namespace marble_maze {
 namespace {
 
-// Contacts are looked for this far beyond the marble's surface: far below anything visible, far
-// above the rounding error of coordinates on a board a metre wide.
-constexpr double kContactMargin = 1e-9;
+// Contacts are looked for this far beyond the marble's surface: far below anything visible, and
+// above the gap that a turning board opens under a marble it carries in one step (its rotation,
+// second order in the step: some nanometres), so that such a marble stays in contact instead of
+// meeting the board anew every other step.
+constexpr double kContactMargin = 1e-7;  // m
 // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 constexpr int kMaxImpactsPerSubstep = 4;
 constexpr double kPi = 3.14159265358979323846;
@@ -172,6 +174,17 @@ Vec3 Simulation::keepOutOfContacts(Vec3* chord) const {
   return correction;
 }
 
+void Simulation::keepOnHeldContacts(const GridFrame& start, Vec3* path) const {
+  // A contact that holds the marble leaves it no normal speed relative to the board, so it
+  // stays on the surface: what the board's turning adds to the path across it (second order in
+  // the step) would otherwise lift it off or sink it in by a few nanometres a step.
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    if (outcomes_[i].bounce || outcomes_[i].normal_impulse <= 0) continue;
+    const Vec3 normal = start.rotation.transpose() * contacts_[i].normal;
+    *path -= path->dot(normal) * normal;
+  }
+}
+
 void Simulation::move(double h, double start_time, const GridFrame& start, Vec3 change) {
   // Semi-implicit Euler moves the marble by h times its new velocity, which is its velocity at
   // mid-substep: over the substep it follows the parabola of the constant acceleration
@@ -187,11 +200,12 @@ void Simulation::move(double h, double start_time, const GridFrame& start, Vec3 
     // there it moves only as fast as it moves relative to the board.
     const Vec3 carried = s > 0 ? frame_.surfaceVelocity(marble_.position) : Vec3::Zero();
     const Vec3 to = marble_.position + (chord - carried) * ((1 - s) * h);
-    const Vec3 path = frame_.toGrid(to) - from;
+    Vec3 path = frame_.toGrid(to) - from;
+    if (s == 0) keepOnHeldContacts(start, &path);
     SweepHit hit;
     if (!sweepSphereInGrid(maze_, frame_, from, path, params_.marble_radius, kContactMargin,
                            &hit)) {
-      marble_.position = to;
+      marble_.position = frame_.toWorld(from + path);
       return;
     }
     from += path * hit.fraction;

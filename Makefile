@@ -19,7 +19,7 @@ bench: build
 	@.ws/devel/lib/marble_maze/marble_maze_bench
 
 screenshot: build
-	@bash scripts/screenshot.sh doc/demo.png
+	@bash scripts/screenshot.sh doc/demo.png 8
 
 lint: deps
 	@PATH=/usr/bin:$$PATH catkin_lint --strict .

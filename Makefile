@@ -1,5 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
-.PHONY: all deps build test demo bench screenshot lint format clean
+SHELL := /bin/bash
+.PHONY: all deps build test demo bench screenshot lint format clean ws
 
 all: build
 
@@ -16,7 +17,11 @@ demo: build
 	@bash scripts/demo.sh
 
 bench: build
-	@.ws/devel/lib/marble_maze/marble_maze_bench
+	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"
+
+# The workspace's path, for: source "$$(make -s ws)/devel/setup.bash"
+ws:
+	@. scripts/workspace.sh && echo "$$WS"
 
 screenshot: build
 	@bash scripts/screenshot.sh doc/demo.png 8
@@ -28,4 +33,4 @@ format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf .ws
+	@. scripts/workspace.sh && rm -rf "$$WS" && echo "removed $$WS"

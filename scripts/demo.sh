@@ -3,12 +3,12 @@
 # without one it runs headless, prints progress and a summary, and stops by itself.
 set -euo pipefail
 export PATH="/usr/bin:$PATH"
-cd "$(dirname "$0")/.."
-# shellcheck disable=SC1091
+. "$(dirname "$0")/workspace.sh"
 set +u
-source .ws/devel/setup.bash
+# shellcheck disable=SC1091
+source "$WS/devel/setup.bash"
 set -u
-export ROS_HOME="${ROS_HOME:-$PWD/.ws/ros_home}"
+export ROS_HOME="${ROS_HOME:-$WS/ros_home}"
 if [ -n "${DISPLAY:-}" ]; then
   exec roslaunch marble_maze demo.launch "$@"
 fi

@@ -8,7 +8,7 @@ packages=(
   python3-rostest python3-rosbag catkin-lint
   libtf2-ros-dev libtf2-eigen-dev libvisualization-msgs-dev libgeometry-msgs-dev libstd-srvs-dev
   python3-rospy python3-tf2-ros python3-std-srvs python3-visualization-msgs python3-geometry-msgs
-  rviz
+  rosbash rviz
 )
 
 missing=()

@@ -3,16 +3,16 @@
 # Exits non-zero when any failed or none ran.
 set -uo pipefail
 export PATH="/usr/bin:$PATH"
-cd "$(dirname "$0")/.."
-results=.ws/build/test_results
+. "$(dirname "$0")/workspace.sh"
+results=$WS/build/test_results
 rm -rf "$results"
-(cd .ws && catkin_make run_tests -j2) > .ws/run_tests.log 2>&1
+(cd "$WS" && catkin_make run_tests -j2) > "$WS/run_tests.log" 2>&1
 status=$?
 extra=()
 if [ $status -ne 0 ]; then
-  tail -n 40 .ws/run_tests.log
-  echo "catkin_make run_tests failed (exit $status); the whole log is .ws/run_tests.log"
+  tail -n 40 "$WS/run_tests.log"
+  echo "catkin_make run_tests failed (exit $status); the whole log is $WS/run_tests.log"
   extra=(--also-failed "catkin_make run_tests")
 fi
 # catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
-/usr/bin/python3 scripts/count_results.py "$results" "${extra[@]}"
+/usr/bin/python3 "$repo/scripts/count_results.py" "$results" "${extra[@]}"

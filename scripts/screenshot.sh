@@ -18,9 +18,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+. scripts/workspace.sh
 set +u
 # shellcheck disable=SC1091
-source .ws/devel/setup.bash
+source "$WS/devel/setup.bash"
 set -u
 run=$(mktemp -d /tmp/marble_maze_shot.XXXXXX)
 export ROS_HOME="$run" HOME="$run" XDG_RUNTIME_DIR="$run" MESA_SHADER_CACHE_DIR="$run"

@@ -52,6 +52,17 @@ def board_quaternion(roll, pitch):
     return (cp * sr, sp * cr, -sp * sr, cp * cr)
 
 
+def first_message(topic, msg_type):
+    """The first message a new subscriber gets on `topic` within WAIT, or None."""
+    got = []
+    sub = rospy.Subscriber(topic, msg_type, got.append)
+    deadline = time.time() + WAIT
+    while not got and time.time() < deadline:
+        time.sleep(0.01)
+    sub.unregister()
+    return got[0] if got else None
+
+
 class Recorder:
     """Keeps every message of a topic (with its wall arrival time) for the waits and checks."""
 
@@ -247,14 +258,9 @@ class NodeApiTest(unittest.TestCase):
 
     def test_maze_markers(self):
         """maze_markers is latched: a late subscriber gets the whole maze, CUBE_LISTs in board."""
-        got = []
-        sub = rospy.Subscriber("maze_markers", MarkerArray, got.append)
-        deadline = time.time() + WAIT
-        while not got and time.time() < deadline:
-            time.sleep(0.01)
-        sub.unregister()
-        self.assertTrue(got, "no latched maze_markers for a late subscriber")
-        markers = got[0].markers
+        array = first_message("maze_markers", MarkerArray)
+        self.assertIsNotNone(array, "no latched maze_markers for a late subscriber")
+        markers = array.markers
         by_ns = {}
         for m in markers:
             self.assertEqual(m.header.frame_id, "board")
@@ -282,14 +288,8 @@ class NodeApiTest(unittest.TestCase):
         self.assertGreater(points["holes"][0].y, 0.08)
 
     def test_marble_marker(self):
-        got = []
-        sub = rospy.Subscriber("marble_marker", Marker, got.append)
-        deadline = time.time() + WAIT
-        while not got and time.time() < deadline:
-            time.sleep(0.01)
-        sub.unregister()
-        self.assertTrue(got, "no marble_marker")
-        m = got[0]
+        m = first_message("marble_marker", Marker)
+        self.assertIsNotNone(m, "no marble_marker")
         self.assertEqual(m.header.frame_id, "marble")
         self.assertEqual(m.type, Marker.SPHERE)
         self.assertAlmostEqual(m.scale.x, 0.012, delta=1e-12)  # 2 x the 6 mm radius

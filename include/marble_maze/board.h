@@ -37,8 +37,10 @@ class Board {
   double clampRate(double rate) const;
 
   double tilt_limit_;
-  double tilt_rate_limit_;  // 0 = unlimited
-  double response_time_;    // 0 = reaches a target at once (within the rate limit)
+  double tilt_rate_limit_;    // 0 = unlimited
+  double response_time_;      // 0 = reaches a target at once (within the rate limit)
+  double approach_step_ = 0;  // the step the lag's approach_ was worked out for
+  double approach_ = 1;       // fraction of the way to the target covered in one step
   Drive drive_ = Drive::Target;
   double target_roll_ = 0, target_pitch_ = 0;
   double roll_rate_ = 0, pitch_rate_ = 0;

@@ -60,10 +60,13 @@ void Board::advance(double h) {
   } else {
     // The first-order lag solved exactly over the step, so that any step is stable; a target
     // closer than rounding is taken as reached, so that the board comes to rest.
-    const double approach = response_time_ > 0 ? 1.0 - std::exp(-h / response_time_) : 1.0;
+    if (h != approach_step_) {  // the step is fixed: the exponential is worked out once
+      approach_step_ = h;
+      approach_ = response_time_ > 0 ? 1.0 - std::exp(-h / response_time_) : 1.0;
+    }
     const auto follow = [&](double angle, double target) {
       if (std::abs(target - angle) < 1e-12) return target;
-      return angle + clampRate((target - angle) * approach / h) * h;
+      return angle + clampRate((target - angle) * approach_ / h) * h;
     };
     new_roll = follow(roll_, target_roll_);
     new_pitch = follow(pitch_, target_pitch_);
@@ -72,16 +75,19 @@ void Board::advance(double h) {
     angular_velocity_.setZero();
     return;
   }
+  const Mat3 new_rotation = rotationFor(new_roll, new_pitch);
   // The angular velocity over the step, in rad/s so that the surface velocity w x (p - pivot)
   // is in m/s: for R = Ry(pitch) Rx(roll), w = pitch' e_y + roll' Ry(pitch) e_x, taken at
-  // mid-step.
+  // mid-step. (cos, sin) of the mid-step pitch is the normalised sum of those at either end,
+  // which the rotations hold: R(0, 0) = cos(pitch), R(2, 0) = -sin(pitch).
   const double roll_rate = (new_roll - roll_) / h, pitch_rate = (new_pitch - pitch_) / h;
-  const double mid_pitch = 0.5 * (pitch_ + new_pitch);
-  angular_velocity_ =
-      Vec3(roll_rate * std::cos(mid_pitch), pitch_rate, -roll_rate * std::sin(mid_pitch));
+  const Eigen::Vector2d mid =
+      Eigen::Vector2d(rotation_(0, 0) + new_rotation(0, 0), -rotation_(2, 0) - new_rotation(2, 0))
+          .normalized();
+  angular_velocity_ = Vec3(roll_rate * mid.x(), pitch_rate, -roll_rate * mid.y());
   roll_ = new_roll;
   pitch_ = new_pitch;
-  rotation_ = rotationFor(roll_, pitch_);
+  rotation_ = new_rotation;
 }
 
 }  // namespace marble_maze

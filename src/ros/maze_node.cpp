@@ -153,7 +153,8 @@ ros::Time MazeNode::stampOfStep(std::uint64_t step) const {
 }
 
 ros::Time MazeNode::stampOfTime(double sim_time) const {
-  return origin_ + ros::Duration(sim_time - static_cast<double>(anchor_step_) * sim_->params().step);
+  return origin_ +
+         ros::Duration(sim_time - static_cast<double>(anchor_step_) * sim_->params().step);
 }
 
 void MazeNode::anchor(const ros::Time& now) {
@@ -196,7 +197,9 @@ void MazeNode::queue(const std_msgs::Header& header, TiltCommand command) {
   last_command_ = now;
   levelled_after_timeout_ = false;
   if (!commands_.push(command))
-    ROS_WARN_THROTTLE(1.0, "tilt commands stamped far ahead fill the queue; dropped the one furthest ahead");
+    ROS_WARN_THROTTLE(1.0,
+                      "tilt commands stamped far ahead fill the queue; dropped the one furthest "
+                      "ahead");
 }
 
 void MazeNode::apply(const TiltCommand& command) {
@@ -209,13 +212,15 @@ void MazeNode::apply(const TiltCommand& command) {
 void MazeNode::onTimer(const ros::TimerEvent&) {
   const ros::Time now = ros::Time::now();
   if (now.isZero()) return;  // a simulated clock that has not started
-  if (origin_.isZero()) {  // the first tick of a running clock
+  if (origin_.isZero()) {    // the first tick of a running clock
     anchor(now);
     publish(true);
     return;
   }
   const ros::Time sim_now = stampOfStep(sim_->steps());
-  if (now < sim_now) {  // steps are only ever taken up to now: the clock went back
+  // Steps are only ever taken up to now (give or take the rounding of a stamp to nanoseconds):
+  // a clock behind the last step went back.
+  if (now + ros::Duration(0.5 * sim_->params().step) < sim_now) {
     ROS_WARN("ROS time went back by %.3f s (a bag looping? a restarted clock?); following it",
              (sim_now - now).toSec());
     anchor(now);

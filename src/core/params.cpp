@@ -120,7 +120,7 @@ const std::vector<Entry>& entries() {
              kPi / 2),
       number("initial_pitch", "rad", "board pitch at the start", &Params::initial_pitch, -kPi / 2,
              kPi / 2),
-      {{"start_position", "m", "marble start X,Y,Z in the board frame (default: the start cell)"},
+      {{"start_position", "m", "marble start X,Y,Z in the board frame"},
        [](Params& p, const std::string& text) {
          p.start_position = parseVec3("start_position", text);
          p.has_start_position = true;

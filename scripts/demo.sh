@@ -4,10 +4,7 @@
 set -euo pipefail
 export PATH="/usr/bin:$PATH"
 . "$(dirname "$0")/workspace.sh"
-set +u
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
-set -u
+use_workspace
 export ROS_HOME="${ROS_HOME:-$WS/ros_home}"
 if [ -n "${DISPLAY:-}" ]; then
   exec roslaunch marble_maze demo.launch "$@"

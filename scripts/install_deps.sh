@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs the Debian packages marble_maze needs that this machine lacks (Debian 12's own ROS 1).
+# Installs the Debian packages marble_maze needs that this machine lacks (Debian 12's own ROS 1),
+# or, given package names, those of them that it lacks.
 set -euo pipefail
 
-packages=(
+packages=("$@")
+[ $# -gt 0 ] || packages=(
   build-essential cmake catkin ros-core-dev ros-message-generation ros-message-runtime
   libeigen3-dev libyaml-cpp-dev libgtest-dev googletest libbenchmark-dev
   python3-rostest python3-rosbag catkin-lint

@@ -8,21 +8,10 @@ cd "$(dirname "$0")/.."
 out=$(realpath -m "${1:-doc/demo.png}")
 seconds=${2:-20}
 
-missing=()
-for p in xvfb x11-utils imagemagick; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+bash scripts/install_deps.sh xvfb x11-utils imagemagick
 
 . scripts/workspace.sh
-set +u
-# shellcheck disable=SC1091
-source "$WS/devel/setup.bash"
-set -u
+use_workspace
 run=$(mktemp -d /tmp/marble_maze_shot.XXXXXX)
 export ROS_HOME="$run" HOME="$run" XDG_RUNTIME_DIR="$run" MESA_SHADER_CACHE_DIR="$run"
 export LIBGL_ALWAYS_SOFTWARE=1 QT_X11_NO_MITSHM=1

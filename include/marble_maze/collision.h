@@ -52,8 +52,8 @@ struct SweepHit {
 /// maze, and no wall is skipped at any speed. Start and path are in the grid frame, so that the
 /// path can be the marble's motion relative to a board that moves meanwhile; the contact comes
 /// back in the world through `frame`, the board's pose at the end of the path.
-bool sweepSphereInGrid(const Maze& maze, const GridFrame& frame, const Vec3& from,
-                       const Vec3& path, double radius, double margin, SweepHit* hit);
+bool sweepSphereInGrid(const Maze& maze, const GridFrame& frame, const Vec3& from, const Vec3& path,
+                       double radius, double margin, SweepHit* hit);
 
 /// The same for a board at rest in `frame`, with start and path in the world.
 bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,

@@ -25,6 +25,9 @@ struct ContactOutcome {
   double approach_speed = 0;  ///< relative normal speed towards the tile before the response
   bool bounce = false;        ///< an impact (approach faster than the threshold)
   double normal_impulse = 0;  ///< N s
+
+  /// The contact holds the marble on the tile (pressing, not bouncing off).
+  bool holds() const { return !bounce && normal_impulse > 0; }
 };
 
 class ContactSolver {

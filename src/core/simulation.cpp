@@ -101,8 +101,7 @@ void Simulation::substep(double h, double start_time) {
   // Contacts against the board where it is at the start, moving as it moves over the substep.
   GridFrame moving = start;
   moving.angular_velocity = frame_.angular_velocity;
-  findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin,
-               &contacts_);
+  findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin, &contacts_);
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
   // Forces: semi-implicit Euler, the new velocity moves the marble.
@@ -157,8 +156,7 @@ void Simulation::takeUpHeldAcceleration(Vec3* change) const {
   // of the substep, as the floor does gravity.
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const double into = change->dot(contacts_[i].normal);
-    if (!outcomes_[i].bounce && outcomes_[i].normal_impulse > 0 && into < 0)
-      *change -= into * contacts_[i].normal;
+    if (outcomes_[i].holds() && into < 0) *change -= into * contacts_[i].normal;
   }
 }
 
@@ -179,7 +177,7 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Vec3* path) const {
   // stays on the surface: what the board's turning adds to the path across it (second order in
   // the step) would otherwise lift it off or sink it in by a few nanometres a step.
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    if (outcomes_[i].bounce || outcomes_[i].normal_impulse <= 0) continue;
+    if (!outcomes_[i].holds()) continue;
     const Vec3 normal = start.rotation.transpose() * contacts_[i].normal;
     *path -= path->dot(normal) * normal;
   }

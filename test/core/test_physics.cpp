@@ -286,8 +286,8 @@ TEST(Resistance, QuadraticAirDragSlowsAsOneOverOnePlusKVT) {
   p.drag_coefficient = 0.47;
   Simulation sim(test::flatFloor(10, 10, 0.01, p));
   run(&sim, 1.0);
-  const double k = p.air_density * p.drag_coefficient * kPi * kRadius * kRadius /
-                   (2 * p.marbleMass());
+  const double k =
+      p.air_density * p.drag_coefficient * kPi * kRadius * kRadius / (2 * p.marbleMass());
   const double expected = 50 / (1 + k * 50 * 1.0);
   EXPECT_NEAR(sim.marble().velocity.x(), expected, 0.001 * expected);  // 0.1%
   EXPECT_LT(expected, 45);  // the drag matters at this speed: the test can tell it from none

@@ -40,24 +40,33 @@ struct Contact {
 void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, double radius,
                   double margin, std::vector<Contact>* contacts);
 
-/// The first impact of a sphere moving from `centre` by `displacement` (world), or none.
+/// The marble's centre moving relative to the board over a stretch of time, in the grid frame:
+/// centre(s) = from + path s + bend s^2 for s from 0 (the stretch's start) to 1 (its end). A
+/// zero bend is a straight path; the integrators' parabolas bend.
+struct Sweep {
+  Vec3 from = Vec3::Zero();
+  Vec3 path = Vec3::Zero();
+  Vec3 bend = Vec3::Zero();
+  double radius = 0;
+  double margin = 0;  ///< tiles this close to the start are contacts, not impacts
+
+  Vec3 at(double s) const { return from + s * (path + s * bend); }
+  Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds
+};
+
+/// The first impact along a sweep.
 struct SweepHit {
-  double fraction = 1;  ///< of the displacement, 0..1
+  double fraction = 1;  ///< s of the impact, 0..1
   Contact contact;      ///< at the moment of impact
 };
 
-/// Sweeps the sphere along a straight path and returns the first tile it hits while approaching
-/// it; tiles already within radius + margin at the start are left to findContacts. The path is
-/// walked in pieces no longer than the radius, so the cost grows with its length, never with the
-/// maze, and no wall is skipped at any speed. Start and path are in the grid frame, so that the
-/// path can be the marble's motion relative to a board that moves meanwhile; the contact comes
-/// back in the world through `frame`, the board's pose at the end of the path.
-bool sweepSphereInGrid(const Maze& maze, const GridFrame& frame, const Vec3& from, const Vec3& path,
-                       double radius, double margin, SweepHit* hit);
-
-/// The same for a board at rest in `frame`, with start and path in the world.
-bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,
-                 const Vec3& displacement, double radius, double margin, SweepHit* hit);
+/// Time of impact: the first tile the sweep hits while approaching it, or none. Tiles within
+/// radius + margin of the start are left to findContacts. The path is walked in pieces no longer
+/// than the radius, so the cost grows with its length, never with the maze, and no wall is
+/// skipped at any speed. On a bent path the time is a root of the quadratic (faces) or quartic
+/// (rounded edges and corners) that the distance gives. The contact comes back in the world
+/// through `frame`, the board's pose at the end of the stretch.
+bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& sweep, SweepHit* hit);
 
 /// Time of impact (0..1) of a sphere moving from o by d against a box, both in one frame, when it
 /// starts outside the box grown by the radius; `point` gets the touched point of the box.

@@ -34,11 +34,18 @@ class ContactSolver {
  public:
   explicit ContactSolver(const Params& params) : params_(params) {}
 
-  /// Changes body's velocities so that no contact approaches its tile. `reference` is the
-  /// marble's velocity that decides impacts and their restitution (the velocity before this
-  /// step's forces, or at the moment of an impact). `outcomes` gets one entry per contact.
-  void solve(const std::vector<Contact>& contacts, const Vec3& reference, MarbleBody* body,
-             std::vector<ContactOutcome>* outcomes);
+  /// Whether a contact is approached faster than the bounce threshold: an impact.
+  bool anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const;
+  /// An impact, at an instant: an approach faster than the bounce threshold leaves at e times
+  /// its speed (eq. (1)), a slower one at zero; friction acts with it. `outcomes` gets one entry
+  /// per contact.
+  void impact(const std::vector<Contact>& contacts, MarbleBody* body,
+              std::vector<ContactOutcome>* outcomes);
+  /// The contacts' forces over a stretch of time, given body's velocity at its end as the field's
+  /// forces alone would leave it: no contact is approached at the end (none bounces), friction
+  /// acts within its cone, rolling resistance slows the spin.
+  void constrain(const std::vector<Contact>& contacts, MarbleBody* body,
+                 std::vector<ContactOutcome>* outcomes);
 
  private:
   void iterate(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,

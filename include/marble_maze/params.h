@@ -15,7 +15,7 @@ namespace marble_maze {
 enum class Model { Smooth, Rolling };
 
 /// How velocity and position advance over a step (see integrator.h).
-enum class Integrator { SemiImplicitEuler };
+enum class IntegratorKind { SemiImplicitEuler, VelocityVerlet, RungeKutta4 };
 
 struct Params {
   // Marble.
@@ -24,18 +24,20 @@ struct Params {
 
   // Physics model; a feature at zero costs nothing in the step.
   Model model = Model::Rolling;
-  double gravity = 9.81;            ///< m/s^2, along -z of the world
-  double restitution = 0.5;         ///< coefficient e of eq. (1), 0..1
-  double bounce_threshold = 0.02;   ///< m/s: slower approaches are contacts, not bounces
-  double friction = 0.3;            ///< Coulomb coefficient (rolling model)
-  double rolling_resistance = 0.0;  ///< dimensionless coefficient; 0 switches it off
-  double drag_coefficient = 0.0;    ///< sphere drag coefficient C_d; 0 switches air drag off
-  double air_density = 1.204;       ///< kg/m^3
+  double gravity = 9.81;              ///< m/s^2, along -z of the world
+  double restitution = 0.5;           ///< coefficient e of eq. (1), 0..1
+  bool bounce_threshold_auto = true;  ///< the threshold follows the step (bounceThreshold())
+  double bounce_threshold = 0.02;     ///< m/s: slower approaches are contacts, not bounces
+  double friction = 0.3;              ///< Coulomb coefficient (rolling model)
+  double rolling_resistance = 0.0;    ///< dimensionless coefficient; 0 switches it off
+  double drag_coefficient = 0.0;      ///< sphere drag coefficient C_d; 0 switches air drag off
+  double air_density = 1.204;         ///< kg/m^3
 
   // Time stepping.
   double step = 0.001;  ///< s, the fixed step of Simulation::step()
   int substeps = 1;     ///< substeps per step
-  Integrator integrator = Integrator::SemiImplicitEuler;
+  IntegratorKind integrator = IntegratorKind::VelocityVerlet;
+  std::string preset = "none";  ///< the last preset applied (see the key `preset`)
 
   // Board.
   double tilt_limit = 0.17453292519943295;  ///< rad (10 degrees): |roll|, |pitch| never exceed it
@@ -51,6 +53,11 @@ struct Params {
 
   double marbleMass() const;
   double marbleInertia() const;  ///< about any axis through the centre
+  /// The bounce threshold in force: the one set, or by default 0.02 m/s, raised for semi-implicit
+  /// Euler to 2 g step/substeps (whose lagging velocity would otherwise bounce a resting marble).
+  double bounceThreshold() const;
+  /// The least bounce threshold the integrator and the substep allow.
+  double leastBounceThreshold() const;
 };
 
 /// A bad key or value; the message names the key and what was expected.

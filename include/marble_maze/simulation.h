@@ -8,6 +8,7 @@
 #include "marble_maze/collision.h"
 #include "marble_maze/contact_solver.h"
 #include "marble_maze/events.h"
+#include "marble_maze/integrator.h"
 #include "marble_maze/maze_file.h"
 
 namespace marble_maze {
@@ -60,27 +61,27 @@ class Simulation {
   /// The marble's centre in the board frame.
   Vec3 marbleInBoard() const;
   /// Kinetic plus potential energy (J), potential measured from the world's z = 0, both at the
-  /// instant the integrator's velocity belongs to (half a substep back).
+  /// instant the integrator's velocity belongs to (for semi-implicit Euler half a substep back).
   double energy() const;
   /// The marble's start position in the board frame.
   Vec3 startInBoard() const;
 
  private:
   void substep(double h, double start_time);
-  void move(double h, double start_time, const GridFrame& start, Vec3 change);
   void pushOut();
-  void takeUpHeldAcceleration(Vec3* change) const;
-  Vec3 keepOutOfContacts(Vec3* chord) const;
-  void keepOnHeldContacts(const GridFrame& start, Vec3* path) const;
-  void respond(const std::vector<Contact>& contacts, const Vec3& reference, double time);
+  void advance(double h, double start_time, const GridFrame& start);
+  void keepOutOfContacts(Trajectory* trajectory, double duration) const;
+  void keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const;
+  void respond(bool impact, double time);
   void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);
-  Vec3 acceleration(const Vec3& velocity) const;
 
   Maze maze_;
   Params params_;
   Board board_;
   ContactSolver solver_;
+  FieldForces forces_;
+  const Integrator* integrator_;  // stateless, shared
   Marble marble_;
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame

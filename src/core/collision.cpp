@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "marble_maze/polynomial.h"
+
 namespace marble_maze {
 namespace {
 
@@ -133,6 +135,126 @@ bool capsuleImpact(const Vec3& o, const Vec3& d, const Vec3& start, int axis, do
   return *time < kNone;
 }
 
+/// Whether the segment from o by d meets the box grown by `grow` on every side (slab test; true
+/// when it starts inside).
+bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow) {
+  double enter = 0, leave = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = box.lower[a] - grow, hi = box.upper[a] + grow;
+    if (d[a] == 0) {
+      if (o[a] < lo || o[a] > hi) return false;
+      continue;
+    }
+    double t1 = (lo - o[a]) / d[a], t2 = (hi - o[a]) / d[a];
+    if (t1 > t2) std::swap(t1, t2);
+    enter = std::max(enter, t1);
+    leave = std::min(leave, t2);
+    if (enter > leave) return false;
+  }
+  return true;
+}
+
+/// The range of one coordinate of a bent path over s in [0, 1].
+void coordinateRange(const Sweep& w, int a, double* lo, double* hi) {
+  const double end = w.from[a] + w.path[a] + w.bend[a];
+  *lo = std::min(w.from[a], end);
+  *hi = std::max(w.from[a], end);
+  if (w.bend[a] != 0) {
+    const double s = -w.path[a] / (2 * w.bend[a]);
+    if (s > 0 && s < 1) {
+      const double turn = w.from[a] + s * (w.path[a] + s * w.bend[a]);
+      *lo = std::min(*lo, turn);
+      *hi = std::max(*hi, turn);
+    }
+  }
+}
+
+/// The quartic |P + Q s + R s^2|^2 - r^2 over the given axes: the squared distance of the path
+/// from a box's edge (two axes) or corner (three) less the radius squared.
+void distanceQuartic(const Sweep& w, const Vec3& feature, const int* axes, int count, double r,
+                     double* c) {
+  double pp = 0, pq = 0, qq = 0, pr = 0, qr = 0, rr = 0;
+  for (int k = 0; k < count; ++k) {
+    const int a = axes[k];
+    const double p = w.from[a] - feature[a], q = w.path[a], b = w.bend[a];
+    pp += p * p;
+    pq += p * q;
+    qq += q * q;
+    pr += p * b;
+    qr += q * b;
+    rr += b * b;
+  }
+  c[0] = pp - r * r;
+  c[1] = 2 * pq;
+  c[2] = qq + 2 * pr;
+  c[3] = 2 * qr;
+  c[4] = rr;
+}
+
+/// First impact, before `before`, of a bent path against a box grown by the radius with rounded
+/// edges and corners. Its surface is made of the faces moved out by the radius, the edges'
+/// cylinders and the corners' spheres: the path first meets it where it first goes into one of
+/// them, at a root of a quadratic (faces) or a quartic (edges, corners).
+bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* time, Vec3* point) {
+  const double r = w.radius;
+  double best = before;
+  Vec3 lo, hi;  // the path's bounding box: a feature beyond it is never reached
+  for (int a = 0; a < 3; ++a) coordinateRange(w, a, &lo[a], &hi[a]);
+  const auto beyond = [&](int a, int side) {
+    return side < 0 ? lo[a] < box.lower[a] : hi[a] > box.upper[a];
+  };
+  const auto corner = [&](int a, int side) { return side < 0 ? box.lower[a] : box.upper[a]; };
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, d = (a + 2) % 3;
+    for (int side : {-1, 1}) {
+      // Faces: side * (x_a(s) - plane) falls through zero.
+      if (!beyond(a, side)) continue;
+      const double plane = corner(a, side) + side * r;
+      const double c[3] = {side * (w.from[a] - plane), side * w.path[a], side * w.bend[a]};
+      double s;
+      if (!firstDescent(c, 2, 0, 1, &s) || s >= best) continue;
+      Vec3 p = w.at(s);
+      if (p[b] < box.lower[b] || p[b] > box.upper[b] || p[d] < box.lower[d] || p[d] > box.upper[d])
+        continue;
+      p[a] = corner(a, side);
+      best = s;
+      *point = p;
+    }
+    // The edges along axis a.
+    for (int side_b : {-1, 1})
+      for (int side_d : {-1, 1}) {
+        if (!beyond(b, side_b) || !beyond(d, side_d)) continue;
+        Vec3 edge = Vec3::Zero();
+        edge[b] = corner(b, side_b);
+        edge[d] = corner(d, side_d);
+        const int axes[2] = {b, d};
+        double c[5], s;
+        distanceQuartic(w, edge, axes, 2, r, c);
+        if (!firstDescent(c, 4, 0, 1, &s) || s >= best) continue;
+        const double along = w.at(s)[a];
+        if (along < box.lower[a] || along > box.upper[a]) continue;
+        edge[a] = along;
+        best = s;
+        *point = edge;
+      }
+  }
+  for (int sx : {-1, 1})
+    for (int sy : {-1, 1})
+      for (int sz : {-1, 1}) {
+        if (!beyond(0, sx) || !beyond(1, sy) || !beyond(2, sz)) continue;
+        const Vec3 vertex(corner(0, sx), corner(1, sy), corner(2, sz));
+        const int axes[3] = {0, 1, 2};
+        double c[5], s;
+        distanceQuartic(w, vertex, axes, 3, r, c);
+        if (!firstDescent(c, 4, 0, 1, &s) || s >= best) continue;
+        best = s;
+        *point = vertex;
+      }
+  if (!(best < before)) return false;
+  *time = best;
+  return true;
+}
+
 }  // namespace
 
 bool sphereBoxImpact(const Vec3& o, const Vec3& d, double radius, const Box& box, double* time,
@@ -217,42 +339,49 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       });
 }
 
-bool sweepSphere(const Maze& maze, const GridFrame& frame, const Vec3& centre,
-                 const Vec3& displacement, double radius, double margin, SweepHit* hit) {
-  return sweepSphereInGrid(maze, frame, frame.toGrid(centre),
-                           frame.rotation.transpose() * displacement, radius, margin, hit);
-}
-
-bool sweepSphereInGrid(const Maze& maze, const GridFrame& frame, const Vec3& o, const Vec3& d,
-                       double radius, double margin, SweepHit* hit) {
-  const double length = d.norm();
+bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {
+  const Vec3 chord = w.path + w.bend;
+  const double sag = 0.25 * w.bend.norm();  // the farthest a bent path strays from its chord
+  const bool bent = sag > 0;
+  // The path's speed along s is largest at an end (its norm is convex), which bounds its length.
+  const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
   if (!(length > 0)) return false;
-  const double touching = (radius + margin) * (radius + margin);
+  const double radius = w.radius;
+  const double touching = (radius + w.margin) * (radius + w.margin);
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();
   Vec3 best_point = Vec3::Zero(), best_normal = Vec3::Zero();
   for (int piece = 0; piece < pieces; ++piece) {
-    const Vec3 a = o + d * (static_cast<double>(piece) / pieces);
-    const Vec3 b = o + d * (static_cast<double>(piece + 1) / pieces);
-    const Vec3 r = Vec3::Constant(radius);
-    const TileRange range = tileRange(maze, a.cwiseMin(b) - r, a.cwiseMax(b) + r);
+    const double s0 = static_cast<double>(piece) / pieces;
+    const double s1 = static_cast<double>(piece + 1) / pieces;
+    const Vec3 a = w.at(s0), b = w.at(s1);
+    // A piece strays from its own chord by the path's sag times its share of s squared.
+    const Vec3 reach = Vec3::Constant(radius + sag / (static_cast<double>(pieces) * pieces));
+    const TileRange range = tileRange(maze, a.cwiseMin(b) - reach, a.cwiseMax(b) + reach);
     forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
-      if ((o - closestPoint(box, o)).squaredNorm() < touching) return;  // findContacts has it
+      if ((w.from - closestPoint(box, w.from)).squaredNorm() < touching) return;  // a contact
       double time;
       Vec3 q;
-      if (!sphereBoxImpact(o, d, radius, box, &time, &q) || time >= best) return;
-      const Vec3 c = o + d * time;
+      if (bent) {
+        // The chord grown by the sag rules out most tiles before the exact test.
+        if (!segmentMeetsBox(w.from, chord, box, radius + sag)) return;
+        if (!bentSphereBoxImpact(w, box, best, &time, &q)) return;
+      } else if (!sphereBoxImpact(w.from, w.path, radius, box, &time, &q) || time >= best) {
+        return;
+      }
+      const Vec3 c = w.at(time);
       if (!facesOpen(maze, t, box, c)) return;  // a seam: the neighbour's face is hit instead
       const Vec3 normal = (c - q).normalized();
-      if (normal.dot(d) >= -1e-12 * length) return;  // grazing: no impact
+      const Vec3 rate = w.rate(time);
+      if (normal.dot(rate) >= -1e-12 * rate.norm()) return;  // grazing: no impact
       best = time;
       best_tile = t;
       best_point = q;
       best_normal = normal;
     });
     // An impact within the pieces walked so far cannot be beaten by tiles further on.
-    if (best <= static_cast<double>(piece + 1) / pieces) break;
+    if (best <= s1) break;
   }
   if (best == kNone) return false;
   hit->fraction = best;

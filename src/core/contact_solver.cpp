@@ -22,30 +22,38 @@ double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity
 
 }  // namespace
 
-void ContactSolver::solve(const std::vector<Contact>& contacts, const Vec3& reference,
-                          MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const {
+  for (const Contact& c : contacts)
+    if (-(velocity - c.surface_velocity).dot(c.normal) > params_.bounce_threshold) return true;
+  return false;
+}
+
+void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* body,
+                           std::vector<ContactOutcome>* outcomes) {
   outcomes->assign(contacts.size(), ContactOutcome());
   if (contacts.empty()) return;
-  bool any_bounce = false;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    const double approach = -(reference - c.surface_velocity).dot(c.normal);
+    const double approach = -(body->velocity - c.surface_velocity).dot(c.normal);
     (*outcomes)[i].approach_speed = approach;
     (*outcomes)[i].bounce = approach > params_.bounce_threshold;
-    any_bounce = any_bounce || (*outcomes)[i].bounce;
   }
   const MarbleBody before = *body;
   iterate(contacts, true, body, outcomes);
   // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
   // would, the impacts are taken as perfectly inelastic instead, which never does.
-  if (any_bounce && contacts.size() > 1) {
-    const double energy_before = std::max(relativeEnergy(contacts, reference, before),
-                                          relativeEnergy(contacts, before.velocity, before));
-    if (relativeEnergy(contacts, body->velocity, *body) > energy_before * (1 + 1e-12)) {
-      *body = before;
-      iterate(contacts, false, body, outcomes);
-    }
+  if (contacts.size() > 1 && relativeEnergy(contacts, body->velocity, *body) >
+                                 relativeEnergy(contacts, before.velocity, before) * (1 + 1e-12)) {
+    *body = before;
+    iterate(contacts, false, body, outcomes);
   }
+}
+
+void ContactSolver::constrain(const std::vector<Contact>& contacts, MarbleBody* body,
+                              std::vector<ContactOutcome>* outcomes) {
+  outcomes->assign(contacts.size(), ContactOutcome());
+  if (contacts.empty()) return;
+  iterate(contacts, false, body, outcomes);
   if (params_.model == Model::Rolling && params_.rolling_resistance > 0)
     resistRolling(contacts, *outcomes, body);
 }

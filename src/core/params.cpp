@@ -1,5 +1,6 @@
 #include "marble_maze/params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -47,6 +48,15 @@ std::string format(const Vec3& v) {
   return format(v.x()) + "," + format(v.y()) + "," + format(v.z());
 }
 
+/// "'a', 'b' or 'c'" from the names of a list of pairs.
+template <typename T>
+std::string listOf(const std::vector<std::pair<std::string, T>>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("'" + names[i].first + "'");
+  return text;
+}
+
 struct Entry {
   ParamInfo info;
   std::function<void(Params&, const std::string&)> set;
@@ -61,31 +71,90 @@ Entry number(const char* key, const char* unit, const char* help, double Params:
           [=](const Params& p) { return format(p.*member); }};
 }
 
+/// A member with named values; an unknown name is refused with the list of accepted ones.
+template <typename T>
+Entry choice(const char* key, const char* help, T Params::*member,
+             std::vector<std::pair<std::string, T>> names) {
+  return {{key, "", help},
+          [=](Params& p, const std::string& text) {
+            for (const auto& [name, value] : names)
+              if (name == text) {
+                p.*member = value;
+                return;
+              }
+            throw ParamError(std::string(key) + ": expected one of " + listOf(names) + ", got '" +
+                             text + "'");
+          },
+          [=](const Params& p) {
+            for (const auto& [name, value] : names)
+              if (value == p.*member) return name;
+            return std::string("?");
+          }};
+}
+
+/// The presets: integrator, step, substeps and model for each use (measured by make tradeoff).
+struct Preset {
+  const char* name;
+  IntegratorKind integrator;
+  double step;
+  int substeps;
+  Model model;
+};
+const Preset kPresets[] = {
+    {"realtime", IntegratorKind::VelocityVerlet, 0.001, 1, Model::Rolling},
+    {"fast", IntegratorKind::VelocityVerlet, 0.01, 1, Model::Rolling},
+    {"accurate", IntegratorKind::RungeKutta4, 0.0001, 1, Model::Rolling},
+};
+
+void applyPreset(Params& p, const std::string& name) {
+  if (name == "none") {
+    p.preset = name;
+    return;
+  }
+  std::vector<std::pair<std::string, int>> names;
+  for (const Preset& preset : kPresets) {
+    names.emplace_back(preset.name, 0);
+    if (name != preset.name) continue;
+    p.integrator = preset.integrator;
+    p.step = preset.step;
+    p.substeps = preset.substeps;
+    p.model = preset.model;
+    p.preset = name;
+    return;
+  }
+  names.emplace_back("none", 0);
+  throw ParamError("preset: expected one of " + listOf(names) + ", got '" + name + "'");
+}
+
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
+      {{"preset", "",
+        "sets integrator, step, substeps and model for a use: realtime (a ROS graph "
+        "controlling at ~55 Hz), fast (training agents), accurate (closest to the physics), "
+        "none; keys set after it override it"},
+       [](Params& p, const std::string& text) { applyPreset(p, text); },
+       [](const Params& p) { return p.preset; }},
       number("marble_radius", "m", "marble radius", &Params::marble_radius, 1e-4, 1.0),
       number("marble_density", "kg/m^3", "marble density (steel 7850)", &Params::marble_density,
              1.0, 1e5),
-      {{"model", "",
-        "contact model: smooth (frictionless, slides) or rolling (solid sphere, "
-        "Coulomb friction)"},
-       [](Params& p, const std::string& text) {
-         if (text == "smooth")
-           p.model = Model::Smooth;
-         else if (text == "rolling")
-           p.model = Model::Rolling;
-         else
-           throw ParamError("model: expected 'smooth' or 'rolling', got '" + text + "'");
-       },
-       [](const Params& p) {
-         return std::string(p.model == Model::Smooth ? "smooth" : "rolling");
-       }},
+      choice("model",
+             "contact model: smooth (frictionless, slides) or rolling (solid sphere, Coulomb "
+             "friction)",
+             &Params::model, {{"smooth", Model::Smooth}, {"rolling", Model::Rolling}}),
       number("gravity", "m/s^2", "gravitational acceleration", &Params::gravity, 0.0, 1000.0),
       number("restitution", "", "coefficient of restitution e of eq. (1)", &Params::restitution,
              0.0, 1.0),
-      number("bounce_threshold", "m/s",
-             "approach speeds below this are contacts (no bounce); at least 2 g step/substeps",
-             &Params::bounce_threshold, 0.0, 100.0),
+      {{"bounce_threshold", "m/s",
+        "approach speeds below this are contacts, not bounces; auto: 0.02, and for "
+        "semi_implicit_euler at least 2 g step/substeps"},
+       [](Params& p, const std::string& text) {
+         p.bounce_threshold_auto = text == "auto";
+         if (!p.bounce_threshold_auto)
+           p.bounce_threshold = parseNumber("bounce_threshold", text, 0.0, 100.0);
+       },
+       [](const Params& p) {
+         return p.bounce_threshold_auto ? std::string("auto") : format(p.bounce_threshold);
+       }},
       number("friction", "", "Coulomb friction coefficient (rolling model)", &Params::friction, 0.0,
              10.0),
       number("rolling_resistance", "", "rolling resistance coefficient, 0 = off",
@@ -102,13 +171,13 @@ const std::vector<Entry>& entries() {
          p.substeps = static_cast<int>(n);
        },
        [](const Params& p) { return std::to_string(p.substeps); }},
-      {{"integrator", "", "time integrator: semi_implicit_euler"},
-       [](Params& p, const std::string& text) {
-         if (text != "semi_implicit_euler")
-           throw ParamError("integrator: expected 'semi_implicit_euler', got '" + text + "'");
-         p.integrator = Integrator::SemiImplicitEuler;
-       },
-       [](const Params&) { return std::string("semi_implicit_euler"); }},
+      choice("integrator",
+             "time integrator: semi_implicit_euler (first order, cheapest), velocity_verlet "
+             "(second order, exact under constant forces), rk4 (fourth order, for air drag)",
+             &Params::integrator,
+             {{"semi_implicit_euler", IntegratorKind::SemiImplicitEuler},
+              {"velocity_verlet", IntegratorKind::VelocityVerlet},
+              {"rk4", IntegratorKind::RungeKutta4}}),
       number("tilt_limit", "rad", "largest |roll| and |pitch| of the board", &Params::tilt_limit,
              0.0, kPi / 2),
       number("tilt_rate_limit", "rad/s", "largest tilt rate of the board, 0 = unlimited",
@@ -178,15 +247,24 @@ std::string getParam(const Params& params, const std::string& key) {
   return find(key).get(params);
 }
 
+double Params::leastBounceThreshold() const {
+  // Semi-implicit Euler's velocity lags its position by half a substep: a marble a hair above
+  // the floor meets it at up to g h faster than it truly does, and would bounce on it forever
+  // below 2 g h. The other schemes meet the floor at the true speed and need no least value.
+  if (integrator != IntegratorKind::SemiImplicitEuler) return 0;
+  return 2.0 * gravity * step / substeps;
+}
+
+double Params::bounceThreshold() const {
+  return bounce_threshold_auto ? std::max(0.02, leastBounceThreshold()) : bounce_threshold;
+}
+
 void validate(const Params& p) {
-  const double h = p.step / p.substeps;
-  // A resting marble gains g*h of approach speed every substep; a threshold below that would make
-  // it bounce on the floor forever instead of resting.
-  if (p.bounce_threshold < 2.0 * p.gravity * h) {
+  if (p.bounceThreshold() < p.leastBounceThreshold()) {
     std::ostringstream msg;
     msg << "bounce_threshold: " << p.bounce_threshold
-        << " m/s is below 2 g step/substeps = " << 2.0 * p.gravity * h
-        << " m/s; raise it or shorten the step";
+        << " m/s is below 2 g step/substeps = " << p.leastBounceThreshold()
+        << " m/s, which semi_implicit_euler needs; raise it, shorten the step or leave it auto";
     throw ParamError(msg.str());
   }
   if (std::abs(p.initial_roll) > p.tilt_limit || std::abs(p.initial_pitch) > p.tilt_limit)

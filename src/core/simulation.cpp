@@ -12,12 +12,16 @@ namespace {
 constexpr double kContactMargin = 1e-7;  // m
 // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 constexpr int kMaxImpactsPerSubstep = 4;
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
 Simulation::Simulation(const Scene& scene)
-    : maze_(scene.maze), params_(scene.params), board_(params_), solver_(params_) {
+    : maze_(scene.maze),
+      params_(scene.params),
+      board_(params_),
+      solver_(params_),
+      forces_(params_),
+      integrator_(&integratorFor(params_.integrator)) {
   validate(params_);
   reset();
 }
@@ -59,12 +63,12 @@ void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity
 }
 
 double Simulation::energy() const {
-  // Semi-implicit Euler's velocity is the velocity half a substep back, where the marble was at
-  // p - v h/2: kinetic and potential energy are taken together there. (With both taken now, a
-  // bounce would seem to gain m g h |v_z|, which the scheme never does.)
+  // Kinetic and potential energy are taken together at the instant the integrator's velocity
+  // belongs to: semi-implicit Euler's is the velocity half a substep back, where the marble was
+  // at p - v h/2. (With both taken now, a bounce would seem to gain m g h |v_z|.)
   const double m = params_.marbleMass();
   const double h = params_.step / params_.substeps;
-  const Vec3 position = marble_.position - 0.5 * h * marble_.velocity;
+  const Vec3 position = marble_.position - integrator_->velocityLag() * h * marble_.velocity;
   return 0.5 * m * marble_.velocity.squaredNorm() +
          0.5 * params_.marbleInertia() * marble_.angular_velocity.squaredNorm() +
          m * params_.gravity * position.z();
@@ -75,18 +79,6 @@ void Simulation::step() {
   const double h = params_.step / params_.substeps;
   for (int i = 0; i < params_.substeps; ++i) substep(h, time() + i * h);
   ++steps_;
-}
-
-Vec3 Simulation::acceleration(const Vec3& velocity) const {
-  Vec3 a(0, 0, -params_.gravity);
-  if (params_.drag_coefficient > 0) {
-    const double r = params_.marble_radius;
-    const double area = kPi * r * r;
-    a -= (0.5 * params_.air_density * params_.drag_coefficient * area * velocity.norm() /
-          params_.marbleMass()) *
-         velocity;
-  }
-  return a;
 }
 
 void Simulation::substep(double h, double start_time) {
@@ -104,15 +96,10 @@ void Simulation::substep(double h, double start_time) {
   findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin, &contacts_);
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
-  // Forces: semi-implicit Euler, the new velocity moves the marble.
-  const Vec3 start_velocity = marble_.velocity;
-  Vec3 change = acceleration(marble_.velocity) * h;
-  marble_.velocity += change;
-  // Impacts and their restitution are decided by the approach before this substep's forces, so
-  // that gravity pressing a resting marble down is never bounced.
-  respond(contacts_, start_velocity, start_time);
-  takeUpHeldAcceleration(&change);
-  move(h, start_time, start, change);
+  // A contact struck at the start (a board kicking the marble) is an impulse before the
+  // substep's forces act, so that the flight after it keeps the whole substep's gravity.
+  if (solver_.anyImpact(contacts_, marble_.velocity)) respond(true, start_time);
+  advance(h, start_time, start);
   if (params_.model == Model::Rolling) {
     const double angle = marble_.angular_velocity.norm() * h;
     if (angle > 0)
@@ -135,93 +122,111 @@ void Simulation::pushOut() {
   }
 }
 
-void Simulation::respond(const std::vector<Contact>& contacts, const Vec3& reference, double time) {
+void Simulation::respond(bool impact, double time) {
   MarbleBody body;
   body.velocity = marble_.velocity;
   body.angular_velocity = marble_.angular_velocity;
   body.mass = params_.marbleMass();
   body.inertia = params_.marbleInertia();
   body.radius = params_.marble_radius;
-  solver_.solve(contacts, reference, &body, &outcomes_);
+  if (impact)
+    solver_.impact(contacts_, &body, &outcomes_);
+  else
+    solver_.constrain(contacts_, &body, &outcomes_);
   marble_.velocity = body.velocity;
   marble_.angular_velocity = body.angular_velocity;
-  for (std::size_t i = 0; i < contacts.size(); ++i)
+  for (std::size_t i = 0; i < contacts_.size(); ++i)
     if (outcomes_[i].bounce)
       events_.push_back(
-          {time, EventKind::Collision, contacts[i].tile, outcomes_[i].approach_speed});
+          {time, EventKind::Collision, contacts_[i].tile, outcomes_[i].approach_speed});
 }
 
-void Simulation::takeUpHeldAcceleration(Vec3* change) const {
-  // A contact that holds the marble (no bounce) takes up the acceleration into it for the rest
-  // of the substep, as the floor does gravity.
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const double into = change->dot(contacts_[i].normal);
-    if (outcomes_[i].holds() && into < 0) *change -= into * contacts_[i].normal;
-  }
-}
-
-Vec3 Simulation::keepOutOfContacts(Vec3* chord) const {
-  // The straight path may not run into a tile the marble touches, whatever the parabola's
-  // velocity at the impact said: a path into it would end inside the tile.
-  Vec3 correction = Vec3::Zero();
+void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
+  // The path may not run into a tile the marble touches, whatever the velocities it was built
+  // from said: it would end inside the tile. Its rate is linear in s, so a path that leaves
+  // neither at its start nor at its end is clear of the tile all along.
   for (const Contact& c : contacts_) {
-    const double into = (*chord + correction - c.surface_velocity).dot(c.normal);
-    if (into < 0) correction -= into * c.normal;
+    const Vec3& n = c.normal;
+    const double start_into = (path->first / duration - c.surface_velocity).dot(n);
+    if (start_into < 0) {
+      path->first -= start_into * duration * n;
+      path->velocity -= start_into * n;
+      if (!path->curved) {  // the chord: its one rate is the end's too
+        path->end_velocity -= start_into * n;
+        continue;
+      }
+      path->second += 0.5 * start_into * duration * n;  // the end's rate stays
+    }
+    if (!path->curved) continue;
+    const double end_into =
+        ((path->first + 2 * path->second) / duration - c.surface_velocity).dot(n);
+    if (end_into < 0) {
+      path->second -= 0.5 * end_into * duration * n;
+      path->end_velocity -= end_into * n;
+    }
   }
-  *chord += correction;
-  return correction;
+  if (path->curved) path->velocity_change = path->end_velocity - path->velocity;
 }
 
-void Simulation::keepOnHeldContacts(const GridFrame& start, Vec3* path) const {
+void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const {
   // A contact that holds the marble leaves it no normal speed relative to the board, so it
   // stays on the surface: what the board's turning adds to the path across it (second order in
   // the step) would otherwise lift it off or sink it in by a few nanometres a step.
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     if (!outcomes_[i].holds()) continue;
     const Vec3 normal = start.rotation.transpose() * contacts_[i].normal;
-    *path -= path->dot(normal) * normal;
+    sweep->path -= sweep->path.dot(normal) * normal;
+    sweep->bend -= sweep->bend.dot(normal) * normal;
   }
 }
 
-void Simulation::move(double h, double start_time, const GridFrame& start, Vec3 change) {
-  // Semi-implicit Euler moves the marble by h times its new velocity, which is its velocity at
-  // mid-substep: over the substep it follows the parabola of the constant acceleration
-  // change / h, so an impact at fraction s meets it at v + (s - 1/2) change. The path is swept
-  // on the board, from where the marble was on it at the start (the board then in its start
-  // pose) to where it will be at the end, so that a board moving meanwhile is swept too.
-  Vec3 chord = marble_.velocity;  // mean velocity over what is left of the substep
-  marble_.velocity += keepOutOfContacts(&chord);
-  Vec3 from = start.toGrid(marble_.position);
-  double s = 0;
+void Simulation::advance(double h, double start_time, const GridFrame& start) {
+  // The substep impact by impact: over what is left of it the field's forces and the contacts'
+  // give the integrator's path, which is swept on the board for the first impact. The first
+  // stretch is swept from where the marble was on the board at the start (the board then in its
+  // start pose) to where it will be at the end, so that a board moving meanwhile is swept too;
+  // after an impact the marble stands where the board carries it by the substep's end, and
+  // moves on only as fast as it moves relative to the board.
+  double done = 0;  // fraction of the substep
   for (int impact = 0; impact < kMaxImpactsPerSubstep; ++impact) {
-    // After an impact the marble stands where the board carries it by the substep's end; from
-    // there it moves only as fast as it moves relative to the board.
-    const Vec3 carried = s > 0 ? frame_.surfaceVelocity(marble_.position) : Vec3::Zero();
-    const Vec3 to = marble_.position + (chord - carried) * ((1 - s) * h);
-    Vec3 path = frame_.toGrid(to) - from;
-    if (s == 0) keepOnHeldContacts(start, &path);
+    const double rest = (1 - done) * h;
+    const Vec3 velocity = marble_.velocity;
+    const FreeMotion free = integrator_->freeMotion(forces_, velocity, rest);
+    marble_.velocity += free.velocity_change;
+    respond(false, start_time);
+    const Stretch stretch{rest, h, impact > 0};
+    Trajectory path = integrator_->trajectory(velocity, marble_.velocity, free, stretch);
+    keepOutOfContacts(&path, rest);
+    Sweep sweep;
+    sweep.radius = params_.marble_radius;
+    sweep.margin = kContactMargin;
+    sweep.bend = frame_.rotation.transpose() * path.second;
+    if (impact == 0) {
+      sweep.from = start.toGrid(marble_.position);
+      sweep.path = frame_.toGrid(marble_.position + path.displacement()) - sweep.from - sweep.bend;
+      keepOnHeldContacts(start, &sweep);
+    } else {
+      const Vec3 carried = frame_.surfaceVelocity(marble_.position) * rest;
+      sweep.from = frame_.toGrid(marble_.position);
+      sweep.path = frame_.rotation.transpose() * (path.displacement() - carried) - sweep.bend;
+    }
     SweepHit hit;
-    if (!sweepSphereInGrid(maze_, frame_, from, path, params_.marble_radius, kContactMargin,
-                           &hit)) {
-      marble_.position = frame_.toWorld(from + path);
+    if (!timeOfImpact(maze_, frame_, sweep, &hit)) {
+      marble_.position = frame_.toWorld(sweep.at(1));
+      marble_.velocity = path.end_velocity;
       return;
     }
-    from += path * hit.fraction;
-    marble_.position = frame_.toWorld(from);
-    s += (1 - s) * hit.fraction;
-    const Vec3 at_impact = marble_.velocity + (s - 0.5) * change;
+    marble_.position = frame_.toWorld(sweep.at(hit.fraction));
+    marble_.velocity = path.velocityAt(hit.fraction);
+    done += (1 - done) * hit.fraction;
     findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin,
                  &contacts_);
     bool found = false;
     for (const Contact& c : contacts_) found = found || c.normal.dot(hit.contact.normal) > 1 - 1e-9;
     if (!found) contacts_.push_back(hit.contact);
-    marble_.velocity = at_impact;
-    respond(contacts_, at_impact, start_time + s * h);
-    takeUpHeldAcceleration(&change);
-    const Vec3 after = marble_.velocity;
-    chord = after + (0.5 * (1 - s)) * change;
-    marble_.velocity = after + (0.5 - s) * change + keepOutOfContacts(&chord);
+    respond(true, start_time + done * h);
   }
+  // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 }
 
 void Simulation::checkFinish(double time) {

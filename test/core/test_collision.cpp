@@ -10,6 +10,17 @@ namespace {
 
 constexpr double kTol = 1e-12;
 
+/// The time of impact along a straight path, board at rest in the world's frame.
+bool sweepStraight(const Maze& maze, const Vec3& from, const Vec3& path, double radius,
+                   SweepHit* hit) {
+  Sweep sweep;
+  sweep.from = from;
+  sweep.path = path;
+  sweep.radius = radius;
+  sweep.margin = 1e-9;
+  return timeOfImpact(maze, GridFrame(), sweep, hit);
+}
+
 /// A uniform 1 cm grid, 10 x 10 x 3, with the given solid tiles.
 Maze grid(std::initializer_list<Index3> solid) {
   Maze maze(AxisSlots::uniform(0.01, 10), AxisSlots::uniform(0.01, 10),
@@ -136,8 +147,7 @@ TEST(SweepSphere, AFastMarbleNeverPassesAThinWall) {
   maze.setSolid({6, 2, 0}, true);  // a 5 mm thin slot, x from 0.075 to 0.08
   SweepHit hit;
   // 100 m/s over 1 ms: 10 cm in one step, straight through the wall's place.
-  ASSERT_TRUE(
-      sweepSphere(maze, GridFrame(), {0.01, 0.0275, 0.005}, {0.1, 0, 0}, 0.005, 1e-9, &hit));
+  ASSERT_TRUE(sweepStraight(maze, {0.01, 0.0275, 0.005}, {0.1, 0, 0}, 0.005, &hit));
   EXPECT_NEAR(0.01 + 0.1 * hit.fraction, 0.075 - 0.005, 1e-12);
   EXPECT_EQ(hit.contact.normal, Vec3(-1, 0, 0));
   EXPECT_EQ(hit.contact.tile, Index3(6, 2, 0));
@@ -148,15 +158,45 @@ TEST(SweepSphere, RollingOverSeamsOfASunkenFloorHitsNothing) {
   for (int i = 0; i < 41; ++i) maze.setSolid({i, 1, 0}, true);
   SweepHit hit;
   // 1 nm below resting height, across twenty seams.
-  EXPECT_FALSE(
-      sweepSphere(maze, GridFrame(), {0.01, 0.03, 0.016 - 1e-9}, {0.4, 0, 0}, 0.006, 1e-9, &hit));
+  EXPECT_FALSE(sweepStraight(maze, {0.01, 0.03, 0.016 - 1e-9}, {0.4, 0, 0}, 0.006, &hit));
   // A tile standing 1 mm proud of the floor is hit, on its top edge.
   Maze step_up(AxisSlots(0.005, 0.02, 41), AxisSlots::uniform(0.02, 3), AxisSlots(0.01, 0.001, 2));
   for (int i = 0; i < 41; ++i) step_up.setSolid({i, 1, 0}, true);
   step_up.setSolid({20, 1, 1}, true);
-  ASSERT_TRUE(
-      sweepSphere(step_up, GridFrame(), {0.01, 0.03, 0.016}, {0.4, 0, 0}, 0.006, 1e-9, &hit));
+  ASSERT_TRUE(sweepStraight(step_up, {0.01, 0.03, 0.016}, {0.4, 0, 0}, 0.006, &hit));
   EXPECT_EQ(hit.contact.tile, Index3(20, 1, 1));
+}
+
+TEST(TimeOfImpact, ABentPathMeetsAnEdgeWhereItsDistanceFirstReachesTheRadius) {
+  // A falling arc past a post's top edge: the first s where the distance from the box reaches
+  // the radius, found by bisection of that distance, is the time of impact.
+  Maze maze(AxisSlots::uniform(0.01, 5), AxisSlots::uniform(0.01, 5), AxisSlots::uniform(0.01, 3));
+  maze.setSolid({2, 2, 0}, true);  // one box [0.02, 0.03]^2 x [0, 0.01]
+  Sweep sweep;
+  sweep.from = {0.0, 0.025, 0.018};
+  sweep.path = {0.04, 0, 0.0};
+  sweep.bend = {0, 0, -0.02};
+  sweep.radius = 0.005;
+  sweep.margin = 1e-9;
+  SweepHit hit;
+  ASSERT_TRUE(timeOfImpact(maze, GridFrame(), sweep, &hit));
+  const Box box = maze.tileBox({2, 2, 0});
+  const auto gap = [&](double s) {
+    const Vec3 c = sweep.at(s);
+    return (c - c.cwiseMax(box.lower).cwiseMin(box.upper)).norm() - sweep.radius;
+  };
+  double lo = 0, hi = 0;
+  while (gap(hi) > 0) {  // the first of 10^4 samples that touches, then bisection
+    lo = hi;
+    hi += 1e-4;
+  }
+  while (hi - lo > 1e-15) (gap(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  EXPECT_NEAR(hit.fraction, hi, 1e-12);
+  // It touched the top edge along y (x = 0.02, z = 0.01), not a face.
+  EXPECT_NEAR(hit.contact.point.x(), 0.02, 1e-15);
+  EXPECT_NEAR(hit.contact.point.z(), 0.01, 1e-15);
+  EXPECT_LT(hit.contact.normal.x(), -0.1);  // from the edge towards the centre: up and back
+  EXPECT_GT(hit.contact.normal.z(), 0.1);
 }
 
 }  // namespace

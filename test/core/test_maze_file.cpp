@@ -252,9 +252,12 @@ TEST(MazeFileError, BadPhysicsValue) {
 }
 
 TEST(MazeFileError, PhysicsThatFailsValidationPointsAtPhysics) {
-  EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  bounce_threshold: 0.001\n",
-                        "bad.yaml:9:1:", "bounce_threshold"));
+  EXPECT_TRUE(failsWith(
+      kGrid + kLayout + "physics:\n  integrator: semi_implicit_euler\n  bounce_threshold: 0.001\n",
+      "bad.yaml:9:1:", "bounce_threshold"));
   Params defaults;
+  defaults.integrator = IntegratorKind::SemiImplicitEuler;
+  defaults.bounce_threshold_auto = false;
   defaults.bounce_threshold = 0.0;
   EXPECT_TRUE(failsWith(kGrid + kLayout, "bad.yaml:1:1:", "bounce_threshold", defaults));
 }

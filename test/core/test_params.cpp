@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "marble_maze/params.h"
 
 namespace marble_maze {
@@ -42,16 +44,24 @@ TEST(Params, BadValuesNameTheKeyAndWhatWasExpected) {
   EXPECT_EQ(errorOf("restitution", "x"), "restitution: expected a number, got 'x'");
   EXPECT_EQ(errorOf("restitution", "1.5"), "restitution: 1.5 is out of range [0, 1]");
   EXPECT_EQ(errorOf("restitution", "nan"), "restitution: expected a number, got 'nan'");
-  EXPECT_EQ(errorOf("model", "bouncy"), "model: expected 'smooth' or 'rolling', got 'bouncy'");
+  EXPECT_EQ(errorOf("model", "bouncy"),
+            "model: expected one of 'smooth' or 'rolling', got 'bouncy'");
+  EXPECT_EQ(errorOf("integrator", "euler"),
+            "integrator: expected one of 'semi_implicit_euler', 'velocity_verlet' or 'rk4', got "
+            "'euler'");
+  EXPECT_EQ(errorOf("preset", "quick"),
+            "preset: expected one of 'realtime', 'fast', 'accurate' or 'none', got 'quick'");
   EXPECT_EQ(errorOf("substeps", "2.5"), "substeps: expected a whole number, got '2.5'");
   EXPECT_NE(errorOf("start_position", "1,2").find("start_position: expected three"),
             std::string::npos);
   EXPECT_NE(errorOf("restitushun", "1").find("unknown parameter 'restitushun'"), std::string::npos);
 }
 
-TEST(Params, ValidateRefusesAThresholdThatWouldMakeRestingMarblesBounce) {
+TEST(Params, ValidateRefusesAThresholdThatWouldMakeSemiImplicitEulerBounceAtRest) {
   Params p;
+  p.integrator = IntegratorKind::SemiImplicitEuler;
   p.step = 0.01;
+  p.bounce_threshold_auto = false;
   try {
     validate(p);
     FAIL() << "expected a ParamError";
@@ -60,6 +70,38 @@ TEST(Params, ValidateRefusesAThresholdThatWouldMakeRestingMarblesBounce) {
   }
   p.substeps = 10;
   EXPECT_NO_THROW(validate(p));
+}
+
+TEST(Params, TheAutomaticBounceThresholdFollowsTheStepForSemiImplicitEulerOnly) {
+  Params p;
+  EXPECT_EQ(getParam(p, "bounce_threshold"), "auto");
+  for (double step : {1e-4, 1e-3, 5e-3, 2e-2}) {
+    p.step = step;
+    p.integrator = IntegratorKind::SemiImplicitEuler;
+    EXPECT_DOUBLE_EQ(p.bounceThreshold(), std::max(0.02, 2 * 9.81 * step));
+    EXPECT_NO_THROW(validate(p));
+    p.integrator = IntegratorKind::VelocityVerlet;
+    EXPECT_DOUBLE_EQ(p.bounceThreshold(), 0.02);  // its velocity does not lag: no least value
+    EXPECT_NO_THROW(validate(p));
+  }
+  setParam(p, "bounce_threshold", "0.05");
+  EXPECT_DOUBLE_EQ(p.bounceThreshold(), 0.05);
+  setParam(p, "bounce_threshold", "auto");
+  EXPECT_DOUBLE_EQ(p.bounceThreshold(), 0.02);
+}
+
+TEST(Params, APresetSetsTheTradeAndLaterKeysOverrideIt) {
+  Params p;
+  setParam(p, "preset", "fast");
+  EXPECT_EQ(getParam(p, "preset"), "fast");
+  const double fast_step = p.step;
+  EXPECT_GT(fast_step, Params().step);  // a coarser step than the default
+  setParam(p, "preset", "accurate");
+  EXPECT_LT(p.step, Params().step);
+  EXPECT_EQ(p.integrator, IntegratorKind::RungeKutta4);
+  setParam(p, "integrator", "semi_implicit_euler");  // after the preset: it wins
+  EXPECT_EQ(getParam(p, "integrator"), "semi_implicit_euler");
+  EXPECT_EQ(getParam(p, "step"), "0.0001");
 }
 
 TEST(Params, SteelMarbleMassAndInertia) {

@@ -1,6 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
-.PHONY: all deps build test demo bench screenshot lint format clean ws
+.PHONY: all deps build test demo bench tradeoff screenshot lint format clean ws
 
 all: build
 
@@ -18,6 +18,10 @@ demo: build
 
 bench: build
 	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"
+
+# The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (a few minutes).
+tradeoff: build
+	@bash scripts/tradeoff.sh
 
 # The workspace's path, for: source "$$(make -s ws)/devel/setup.bash"
 ws:

@@ -50,8 +50,7 @@ class ContactSolver {
  private:
   void iterate(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
                std::vector<ContactOutcome>* outcomes);
-  void resistRolling(const std::vector<Contact>& contacts,
-                     const std::vector<ContactOutcome>& outcomes, MarbleBody* body) const;
+  void resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const;
 
   Params params_;
   std::vector<Vec3> friction_impulses_;  // reused: no allocation per step

@@ -1,6 +1,7 @@
-// Time integration: how the marble's velocity and position advance over a stretch of time under
-// the field's forces (gravity, air drag), and the path it takes there, along which impacts are
-// looked for. The step owns contacts and impacts; a scheme is one small class here.
+// Time integration: how the marble's velocities and position advance over a stretch of time, and
+// the path it takes there, along which impacts are looked for. A scheme samples the marble's
+// dynamics (the field's forces and the contacts' together, see Dynamics); the step owns contacts
+// and impacts. A scheme is one small class here.
 #pragma once
 
 #include "marble_maze/geometry.h"
@@ -22,24 +23,22 @@ class FieldForces {
   double drag_;  // 1/m: the drag's acceleration is -drag |v| v
 };
 
-/// How velocity and position change over a stretch under the field's forces alone.
-struct FreeMotion {
-  Vec3 velocity_change = Vec3::Zero();
-  Vec3 displacement = Vec3::Zero();
+/// The marble's linear and angular velocity (world frame).
+struct Velocities {
+  Vec3 linear = Vec3::Zero();
+  Vec3 angular = Vec3::Zero();
 };
 
-/// The marble's path over a stretch of time, s = 0 at its start and 1 at its end:
-/// centre(s) = start + first s + second s^2, true velocity(s) = velocity + s velocity_change.
-struct Trajectory {
-  Vec3 first = Vec3::Zero();
-  Vec3 second = Vec3::Zero();
-  Vec3 velocity = Vec3::Zero();
-  Vec3 velocity_change = Vec3::Zero();
-  Vec3 end_velocity = Vec3::Zero();  ///< the state's velocity after the stretch
-  bool curved = true;  ///< impacts are looked for on the curve; false: on the chord (second = 0)
-
-  Vec3 displacement() const { return first + second; }
-  Vec3 velocityAt(double s) const { return velocity + s * velocity_change; }
+/// The marble's dynamics as a scheme samples them: its velocities after `duration` from `start`
+/// under the field's forces and the forces of the contacts it touches (which keep it out of
+/// their tiles, with friction and rolling resistance), as one first-order step gives them. For
+/// forces that are constant over the stretch the change is linear in `duration`.
+class Dynamics {
+ public:
+  virtual ~Dynamics() = default;
+  virtual Velocities after(const Velocities& start, double duration) = 0;
+  /// True when the field's forces do not change with the velocity (no drag).
+  virtual bool constantForces() const = 0;
 };
 
 /// What is left of a substep: from its start, or from an impact in it, to its end.
@@ -49,18 +48,30 @@ struct Stretch {
   bool from_impact = false;  ///< starts at an impact, where the velocity is the true one
 };
 
+/// The marble's path over a stretch, s = 0 at its start and 1 at its end:
+/// centre(s) = start + first s + second s^2, true velocity(s) = velocity + s velocity_change;
+/// the spin changes linearly from the start's to the end's.
+struct Trajectory {
+  Vec3 first = Vec3::Zero();
+  Vec3 second = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 velocity_change = Vec3::Zero();
+  Vec3 start_spin = Vec3::Zero();
+  Velocities end;      ///< the state's velocities after the stretch
+  bool curved = true;  ///< impacts are looked for on the curve; false: on the chord (second = 0)
+
+  Vec3 displacement() const { return first + second; }
+  Vec3 velocityAt(double s) const { return velocity + s * velocity_change; }
+  Vec3 spinAt(double s) const { return start_spin + s * (end.angular - start_spin); }
+};
+
 /// A time integration scheme.
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  /// The motion over `duration` under the field's forces alone, from the state's velocity.
-  virtual FreeMotion freeMotion(const FieldForces& forces, const Vec3& velocity,
-                                double duration) const = 0;
-  /// The path over a stretch from the state's velocity at its start to `end_velocity`, the
-  /// velocity after the contacts took their share, which acted as a constant force over the
-  /// stretch; `free` is what freeMotion gave for it.
-  virtual Trajectory trajectory(const Vec3& velocity, const Vec3& end_velocity,
-                                const FreeMotion& free, const Stretch& stretch) const = 0;
+  /// The path over a stretch from the state's velocities at its start.
+  virtual Trajectory advance(Dynamics& dynamics, const Velocities& start,
+                             const Stretch& stretch) const = 0;
   /// How far the state's velocity lies behind its position in time, in substeps.
   virtual double velocityLag() const { return 0; }
 };

@@ -67,12 +67,24 @@ class Simulation {
   Vec3 startInBoard() const;
 
  private:
+  /// The marble's dynamics against the contacts of the moment, as the integrators sample them.
+  class ContactDynamics : public Dynamics {
+   public:
+    explicit ContactDynamics(Simulation* sim) : sim_(sim) {}
+    Velocities after(const Velocities& start, double duration) override;
+    bool constantForces() const override { return sim_->forces_.constant(); }
+
+   private:
+    Simulation* sim_;
+  };
+
   void substep(double h, double start_time);
   void pushOut();
   void advance(double h, double start_time, const GridFrame& start);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const;
-  void respond(bool impact, double time);
+  MarbleBody body() const;
+  void impact(double time);
   void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);
 

@@ -53,9 +53,11 @@ void ContactSolver::constrain(const std::vector<Contact>& contacts, MarbleBody* 
                               std::vector<ContactOutcome>* outcomes) {
   outcomes->assign(contacts.size(), ContactOutcome());
   if (contacts.empty()) return;
-  iterate(contacts, false, body, outcomes);
+  // Rolling resistance first, so that friction turns its torque into the marble's slowing in the
+  // same stretch: a constant resistance then slows it at a constant rate, exactly.
   if (params_.model == Model::Rolling && params_.rolling_resistance > 0)
-    resistRolling(contacts, *outcomes, body);
+    resistRolling(contacts, body);
+  iterate(contacts, false, body, outcomes);
 }
 
 void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restitution,
@@ -100,18 +102,18 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   }
 }
 
-void ContactSolver::resistRolling(const std::vector<Contact>& contacts,
-                                  const std::vector<ContactOutcome>& outcomes,
-                                  MarbleBody* body) const {
-  // A torque of c_rr * N * r against the rolling part of the spin; friction then slows the
-  // marble's travel on the next step.
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const Vec3& n = contacts[i].normal;
-    Vec3 rolling_spin = body->angular_velocity - body->angular_velocity.dot(n) * n;
+void ContactSolver::resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const {
+  // A torque of c_rr N r against the rolling part of the spin, with N the impulse that stops the
+  // contact's approach (exact for one contact; the contacts of a tile grid are at right angles).
+  for (const Contact& c : contacts) {
+    const Vec3& n = c.normal;
+    const double normal_impulse =
+        std::max(0.0, -(body->velocity - c.surface_velocity).dot(n)) * body->mass;
+    const Vec3 rolling_spin = body->angular_velocity - body->angular_velocity.dot(n) * n;
     const double spin = rolling_spin.norm();
-    if (spin == 0) continue;
+    if (spin == 0 || normal_impulse == 0) continue;
     const double change =
-        params_.rolling_resistance * outcomes[i].normal_impulse * body->radius / body->inertia;
+        params_.rolling_resistance * normal_impulse * body->radius / body->inertia;
     body->angular_velocity -= rolling_spin * (std::min(spin, change) / spin);
   }
 }

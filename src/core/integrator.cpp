@@ -7,89 +7,95 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// x_{n+1} = x_n + h v_{n+1}: first order, the cheapest. Its velocity is the exact one half a
-/// substep back (for a constant acceleration), so it moves along the chord of the parabola, and
-/// the velocity at a point of the chord is taken from that parabola.
+/// The curve through the stretch with the start's velocity and the end's displacement; the
+/// velocity along it changes linearly from the start's to the end's.
+Trajectory curve(const Velocities& start, const Velocities& end, const Vec3& displacement,
+                 double duration) {
+  Trajectory t;
+  t.first = start.linear * duration;
+  t.second = displacement - t.first;
+  t.velocity = start.linear;
+  t.velocity_change = end.linear - start.linear;
+  t.start_spin = start.angular;
+  t.end = end;
+  return t;
+}
+
+Velocities plus(const Velocities& a, const Velocities& b, double scale) {
+  return {a.linear + scale * b.linear, a.angular + scale * b.angular};
+}
+
+Velocities minus(const Velocities& a, const Velocities& b) {
+  return {a.linear - b.linear, a.angular - b.angular};
+}
+
+/// x_{n+1} = x_n + h v_{n+1}: first order, the cheapest. For a constant acceleration its
+/// velocity is the true one half a substep back, so it moves along the chord of the true
+/// parabola, and the velocity at a point of the chord is taken from that parabola.
 class SemiImplicitEuler : public Integrator {
  public:
-  FreeMotion freeMotion(const FieldForces& forces, const Vec3& velocity,
-                        double duration) const override {
-    FreeMotion m;
-    m.velocity_change = forces.acceleration(velocity) * duration;
-    m.displacement = (velocity + m.velocity_change) * duration;
-    return m;
-  }
-  Trajectory trajectory(const Vec3& velocity, const Vec3& end_velocity, const FreeMotion&,
-                        const Stretch& stretch) const override {
-    // With the constant acceleration of the velocity's change over the stretch: the true
-    // velocity at its start (the state's lags half a substep, except at an impact), the chord's
-    // displacement, and the state's velocity at its end, again half a substep back.
+  Trajectory advance(Dynamics& dynamics, const Velocities& start,
+                     const Stretch& stretch) const override {
     const double h = stretch.duration;
     Trajectory t;
     t.curved = false;
-    t.velocity_change = end_velocity - velocity;
+    t.end = dynamics.after(start, h);
+    t.start_spin = start.angular;
+    t.velocity_change = t.end.linear - start.linear;
+    // The true velocity at the start (the state's lags half a substep, except at an impact),
+    // the chord's displacement, and the state's velocity at the end, again half a substep back.
     const double lag = stretch.from_impact ? 0 : 0.5 * stretch.substep;
-    t.velocity = velocity + (lag / h) * t.velocity_change;
+    t.velocity = start.linear + (lag / h) * t.velocity_change;
     t.first = (t.velocity + 0.5 * t.velocity_change) * h;
-    t.end_velocity = t.velocity + (1 - 0.5 * stretch.substep / h) * t.velocity_change;
+    t.end.linear = t.velocity + (1 - 0.5 * stretch.substep / h) * t.velocity_change;
     return t;
   }
   double velocityLag() const override { return 0.5; }
 };
 
-/// Schemes whose velocity belongs to the state's instant and whose path is the curve of their
-/// free motion plus the contacts' constant force: exact wherever the forces are constant.
-class CurveIntegrator : public Integrator {
+/// Second order, and exact under constant forces: x + v h + a h^2 / 2 with a the acceleration
+/// of the field and the contacts together. A velocity-dependent force (drag) is averaged over
+/// the stretch (Heun's trapezoid).
+class VelocityVerlet : public Integrator {
  public:
-  Trajectory trajectory(const Vec3& velocity, const Vec3& end_velocity, const FreeMotion& free,
-                        const Stretch& stretch) const override {
-    const double duration = stretch.duration;
-    Trajectory t;
-    const Vec3 by_contacts = end_velocity - velocity - free.velocity_change;
-    t.first = velocity * duration;
-    t.second = free.displacement + 0.5 * duration * by_contacts - t.first;
-    t.velocity = velocity;
-    t.velocity_change = end_velocity - velocity;
-    t.end_velocity = end_velocity;
-    return t;
-  }
-};
-
-/// Second order, and exact under a constant acceleration: x + v h + a h^2 / 2. A velocity-
-/// dependent force (drag) is averaged over the stretch (Heun).
-class VelocityVerlet : public CurveIntegrator {
- public:
-  FreeMotion freeMotion(const FieldForces& forces, const Vec3& velocity,
-                        double duration) const override {
-    Vec3 a = forces.acceleration(velocity);
-    if (!forces.constant()) a = 0.5 * (a + forces.acceleration(velocity + a * duration));
-    FreeMotion m;
-    m.velocity_change = a * duration;
-    m.displacement = (velocity + 0.5 * m.velocity_change) * duration;
-    return m;
-  }
-};
-
-/// Classical fourth-order Runge-Kutta on (x, v): for forces that change over the stretch.
-/// Under a constant acceleration it is the exact parabola, as velocity Verlet.
-class RungeKutta4 : public CurveIntegrator {
- public:
-  FreeMotion freeMotion(const FieldForces& forces, const Vec3& velocity,
-                        double duration) const override {
-    const double h = duration;
-    FreeMotion m;
-    if (forces.constant()) {
-      m.velocity_change = forces.acceleration(velocity) * h;
-      m.displacement = (velocity + 0.5 * m.velocity_change) * h;
-      return m;
+  Trajectory advance(Dynamics& dynamics, const Velocities& start,
+                     const Stretch& stretch) const override {
+    const double h = stretch.duration;
+    Velocities end = dynamics.after(start, h);
+    if (!dynamics.constantForces()) {
+      const Velocities again = dynamics.after(end, h);
+      end = plus(start, plus(minus(end, start), minus(again, end), 1), 0.5);
     }
-    const Vec3 v1 = velocity, a1 = forces.acceleration(v1);
-    const Vec3 v2 = velocity + 0.5 * h * a1, a2 = forces.acceleration(v2);
-    const Vec3 v3 = velocity + 0.5 * h * a2, a3 = forces.acceleration(v3);
-    const Vec3 v4 = velocity + h * a3, a4 = forces.acceleration(v4);
-    m.velocity_change = h / 6 * (a1 + 2 * a2 + 2 * a3 + a4);
-    m.displacement = h / 6 * (v1 + 2 * v2 + 2 * v3 + v4);
-    return m;
+    return curve(start, end, 0.5 * (start.linear + end.linear) * h, h);
+  }
+};
+
+/// Classical fourth-order Runge-Kutta on the constrained dynamics: each stage's acceleration is
+/// what the field's forces and the contacts give together, so that drag on a rolling marble is
+/// fourth order too. Under constant forces one stage is exact: it is velocity Verlet.
+class RungeKutta4 : public Integrator {
+ public:
+  Trajectory advance(Dynamics& dynamics, const Velocities& start,
+                     const Stretch& stretch) const override {
+    const double h = stretch.duration;
+    if (dynamics.constantForces()) {
+      const Velocities end = dynamics.after(start, h);
+      return curve(start, end, 0.5 * (start.linear + end.linear) * h, h);
+    }
+    // k_i: the velocity change over the whole stretch at stage i (h times the acceleration).
+    const Velocities& v1 = start;
+    const Velocities k1 = minus(dynamics.after(v1, h), v1);
+    const Velocities v2 = plus(start, k1, 0.5);
+    const Velocities k2 = minus(dynamics.after(v2, h), v2);
+    const Velocities v3 = plus(start, k2, 0.5);
+    const Velocities k3 = minus(dynamics.after(v3, h), v3);
+    const Velocities v4 = plus(start, k3, 1);
+    const Velocities k4 = minus(dynamics.after(v4, h), v4);
+    Velocities end = start;
+    for (const auto& [k, w] : {std::pair{k1, 1.0}, {k2, 2.0}, {k3, 2.0}, {k4, 1.0}})
+      end = plus(end, k, w / 6);
+    const Vec3 displacement = (v1.linear + 2 * v2.linear + 2 * v3.linear + v4.linear) * (h / 6);
+    return curve(start, end, displacement, h);
   }
 };
 

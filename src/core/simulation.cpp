@@ -98,7 +98,7 @@ void Simulation::substep(double h, double start_time) {
   pushOut();
   // A contact struck at the start (a board kicking the marble) is an impulse before the
   // substep's forces act, so that the flight after it keeps the whole substep's gravity.
-  if (solver_.anyImpact(contacts_, marble_.velocity)) respond(true, start_time);
+  if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
   advance(h, start_time, start);
   if (params_.model == Model::Rolling) {
     const double angle = marble_.angular_velocity.norm() * h;
@@ -122,23 +122,33 @@ void Simulation::pushOut() {
   }
 }
 
-void Simulation::respond(bool impact, double time) {
+MarbleBody Simulation::body() const {
   MarbleBody body;
   body.velocity = marble_.velocity;
   body.angular_velocity = marble_.angular_velocity;
   body.mass = params_.marbleMass();
   body.inertia = params_.marbleInertia();
   body.radius = params_.marble_radius;
-  if (impact)
-    solver_.impact(contacts_, &body, &outcomes_);
-  else
-    solver_.constrain(contacts_, &body, &outcomes_);
-  marble_.velocity = body.velocity;
-  marble_.angular_velocity = body.angular_velocity;
+  return body;
+}
+
+void Simulation::impact(double time) {
+  MarbleBody b = body();
+  solver_.impact(contacts_, &b, &outcomes_);
+  marble_.velocity = b.velocity;
+  marble_.angular_velocity = b.angular_velocity;
   for (std::size_t i = 0; i < contacts_.size(); ++i)
     if (outcomes_[i].bounce)
       events_.push_back(
           {time, EventKind::Collision, contacts_[i].tile, outcomes_[i].approach_speed});
+}
+
+Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration) {
+  MarbleBody b = sim_->body();
+  b.velocity = start.linear + sim_->forces_.acceleration(start.linear) * duration;
+  b.angular_velocity = start.angular;
+  sim_->solver_.constrain(sim_->contacts_, &b, &sim_->outcomes_);
+  return {b.velocity, b.angular_velocity};
 }
 
 void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
@@ -152,7 +162,7 @@ void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
       path->first -= start_into * duration * n;
       path->velocity -= start_into * n;
       if (!path->curved) {  // the chord: its one rate is the end's too
-        path->end_velocity -= start_into * n;
+        path->end.linear -= start_into * n;
         continue;
       }
       path->second += 0.5 * start_into * duration * n;  // the end's rate stays
@@ -162,10 +172,10 @@ void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
         ((path->first + 2 * path->second) / duration - c.surface_velocity).dot(n);
     if (end_into < 0) {
       path->second -= 0.5 * end_into * duration * n;
-      path->end_velocity -= end_into * n;
+      path->end.linear -= end_into * n;
     }
   }
-  if (path->curved) path->velocity_change = path->end_velocity - path->velocity;
+  if (path->curved) path->velocity_change = path->end.linear - path->velocity;
 }
 
 void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const {
@@ -187,21 +197,18 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
   // start pose) to where it will be at the end, so that a board moving meanwhile is swept too;
   // after an impact the marble stands where the board carries it by the substep's end, and
   // moves on only as fast as it moves relative to the board.
+  ContactDynamics dynamics(this);
   double done = 0;  // fraction of the substep
-  for (int impact = 0; impact < kMaxImpactsPerSubstep; ++impact) {
+  for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
-    const Vec3 velocity = marble_.velocity;
-    const FreeMotion free = integrator_->freeMotion(forces_, velocity, rest);
-    marble_.velocity += free.velocity_change;
-    respond(false, start_time);
-    const Stretch stretch{rest, h, impact > 0};
-    Trajectory path = integrator_->trajectory(velocity, marble_.velocity, free, stretch);
+    Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
+                                           Stretch{rest, h, impacts > 0});
     keepOutOfContacts(&path, rest);
     Sweep sweep;
     sweep.radius = params_.marble_radius;
     sweep.margin = kContactMargin;
     sweep.bend = frame_.rotation.transpose() * path.second;
-    if (impact == 0) {
+    if (impacts == 0) {
       sweep.from = start.toGrid(marble_.position);
       sweep.path = frame_.toGrid(marble_.position + path.displacement()) - sweep.from - sweep.bend;
       keepOnHeldContacts(start, &sweep);
@@ -213,18 +220,20 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
     SweepHit hit;
     if (!timeOfImpact(maze_, frame_, sweep, &hit)) {
       marble_.position = frame_.toWorld(sweep.at(1));
-      marble_.velocity = path.end_velocity;
+      marble_.velocity = path.end.linear;
+      marble_.angular_velocity = path.end.angular;
       return;
     }
     marble_.position = frame_.toWorld(sweep.at(hit.fraction));
     marble_.velocity = path.velocityAt(hit.fraction);
+    marble_.angular_velocity = path.spinAt(hit.fraction);
     done += (1 - done) * hit.fraction;
     findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin,
                  &contacts_);
     bool found = false;
     for (const Contact& c : contacts_) found = found || c.normal.dot(hit.contact.normal) > 1 - 1e-9;
     if (!found) contacts_.push_back(hit.contact);
-    respond(true, start_time + done * h);
+    impact(start_time + done * h);
   }
   // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 }

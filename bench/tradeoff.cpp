@@ -1,0 +1,340 @@
+// The speed-accuracy trade, measured: every combination of model, integrator, step and substeps
+// on a fixed set of scenarios, each with its cost (CPU time per simulated second on one core) and
+// its error against a closed form or against a reference run. Writes CSV rows; make tradeoff
+// turns them into doc/tradeoff.md and doc/tradeoff.png (scripts/plot_tradeoff.py).
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "marble_maze/maze_file.h"
+#include "marble_maze/simulation.h"
+#include "marble_maze/tilt_schedule.h"
+
+namespace mm = marble_maze;
+
+namespace {
+
+constexpr double kRadius = 0.006;
+constexpr double kGravity = 9.81;
+constexpr double kMissing = 1.0;  // the relative error of a result that never came: 100%
+
+/// One setting of the trade.
+struct Option {
+  mm::Model model;
+  mm::IntegratorKind integrator;
+  double step;
+  int substeps;
+
+  mm::Params params() const {
+    mm::Params p;
+    p.model = model;
+    p.integrator = integrator;
+    p.step = step;
+    p.substeps = substeps;
+    return p;
+  }
+};
+
+// --- Scenes and runs -----------------------------------------------------------------------------
+
+/// A floor of nx x ny square tiles on one 5 mm slab.
+mm::Maze floorOf(int nx, int ny, double tile) {
+  mm::Maze maze(mm::AxisSlots::uniform(tile, nx), mm::AxisSlots::uniform(tile, ny),
+                mm::AxisSlots::uniform(0.005, 2));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) maze.setSolid({i, j, 0}, true);
+  maze.setStart({nx / 2, ny / 2});
+  return maze;
+}
+
+mm::Params placedAt(mm::Params p, const mm::Vec3& position, const mm::Vec3& velocity) {
+  p.has_start_position = true;
+  p.start_position = position;
+  p.start_velocity = velocity;
+  return p;
+}
+
+void run(mm::Simulation* sim, double seconds) {
+  const auto steps = std::lround(seconds / sim->params().step);
+  for (long i = 0; i < steps; ++i) sim->step();
+}
+
+double relative(double value, double exact) {
+  return std::abs(value - exact) / std::abs(exact);
+}
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+/// The classic maze with its holes filled and no goal, so that the marble plays for the whole
+/// run, rolling round its start corridor into walls and posts as the board circles (below).
+mm::Scene playScene(const mm::Params& params) {
+  const mm::Maze classic = mm::loadScene("classic").maze;
+  mm::Maze maze(classic.axis(0), classic.axis(1), classic.axis(2));
+  for (int k = 0; k < classic.size().z(); ++k)
+    for (int j = 0; j < classic.size().y(); ++j)
+      for (int i = 0; i < classic.size().x(); ++i)
+        maze.setSolid({i, j, k}, classic.solid({i, j, k}) || k == 0);
+  maze.setStart(classic.start());
+  maze.setName("classic, holes filled, no goal");
+  mm::Params p = params;
+  p.restitution = 0.5;
+  p.friction = 0.3;
+  return {maze, p};
+}
+
+/// The board's tilt circling at 0.1 rad, one turn in 2 s, given every 0.25 s (a servo follows
+/// it): the marble is still rolling at 0.15 m/s after 5 s and meets about seven walls a second.
+const mm::TiltSchedule& playProgramme() {
+  static const mm::TiltSchedule programme = [] {
+    std::string text;
+    for (int k = 0; k <= 44; ++k) {
+      const double t = 0.25 * k, angle = 3.14159265358979323846 * t;
+      text += number(t) + "," + number(0.1 * std::sin(angle)) + "," +
+              number(k == 0 ? 0.0 : 0.1 * std::cos(angle)) + "\n";
+    }
+    return mm::TiltSchedule::parse(text, "the play programme");
+  }();
+  return programme;
+}
+
+/// Ten seconds of play: where the marble is after 5 s and when the first five impacts came.
+struct Play {
+  mm::Vec3 at_five_seconds = mm::Vec3::Zero();
+  std::vector<double> impacts;
+  double cpu_seconds = 0;
+};
+
+double cpuNow() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+Play play(const mm::Params& params) {
+  const mm::Scene scene = playScene(params);
+  mm::Simulation sim(scene);
+  const mm::TiltSchedule& programme = playProgramme();
+  Play result;
+  const auto steps = std::lround(10.0 / params.step), half = std::lround(5.0 / params.step);
+  const double start = cpuNow();
+  for (long n = 1; n <= steps; ++n) {
+    const auto tilt = programme.at(static_cast<double>(n) * params.step);
+    sim.setTargetTilt(tilt.roll, tilt.pitch);
+    sim.step();
+    for (const mm::Event& e : sim.events())
+      if (e.kind == mm::EventKind::Collision && result.impacts.size() < 5)
+        result.impacts.push_back(e.time);
+    if (n == half) result.at_five_seconds = sim.marbleInBoard();
+  }
+  result.cpu_seconds = cpuNow() - start;
+  return result;
+}
+
+// --- Closed forms --------------------------------------------------------------------------------
+
+/// Rolling (5/7 g sin) or sliding (g sin) down a 10 degree incline from rest for 1 s.
+double inclineError(const Option& o) {
+  const double theta = 10 * 3.14159265358979323846 / 180;
+  mm::Params p = placedAt(o.params(), {-0.95, 0, kRadius}, mm::Vec3::Zero());
+  p.initial_pitch = theta;
+  mm::Simulation sim({floorOf(200, 10, 0.01), p});
+  const mm::Vec3 start = sim.marble().position;
+  run(&sim, 1.0);
+  const double a = (o.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0) * kGravity * std::sin(theta);
+  return relative((sim.marble().position - start).norm(), 0.5 * a);
+}
+
+/// The first five apexes of a marble dropped from 5 cm (e = 0.7): h0 e^2k. Each is the height
+/// its energy reaches, taken just after the bounce (the energy is taken where the integrator's
+/// velocity belongs).
+double bounceError(const Option& o) {
+  const double h0 = 0.05, e = 0.7;
+  mm::Params p = placedAt(o.params(), {0, 0, kRadius + h0}, mm::Vec3::Zero());
+  p.restitution = e;
+  mm::Simulation sim({floorOf(10, 10, 0.01), p});
+  const double weight = p.marbleMass() * kGravity;
+  std::vector<double> apexes(5, -1.0);
+  int bounces = 0;
+  while (bounces < 5 && sim.time() < 5) {
+    sim.step();
+    bounces += static_cast<int>(sim.events().size());
+    if (!sim.events().empty() && bounces <= 5)
+      apexes[bounces - 1] = sim.energy() / weight - kRadius;
+  }
+  double worst = 0;
+  for (int k = 1; k <= 5; ++k)
+    worst = std::max(
+        worst, apexes[k - 1] < 0 ? kMissing : relative(apexes[k - 1], h0 * std::pow(e, 2 * k)));
+  return worst;
+}
+
+/// A marble launched sliding at 0.7 m/s on a level floor rolls on at 5/7 of that.
+double slipToRollError(const Option& o) {
+  mm::Simulation sim(
+      {floorOf(200, 10, 0.01), placedAt(o.params(), {-0.9, 0, kRadius}, {0.7, 0, 0})});
+  run(&sim, 1.0);
+  return relative(sim.marble().velocity.norm(), 0.5);
+}
+
+/// Rolling at 0.5 m/s against rolling resistance 0.01: v = 0.5 - (5/7) c_rr g t after 2 s.
+double rollingResistanceError(const Option& o) {
+  mm::Params p = placedAt(o.params(), {-0.9, 0, kRadius}, {0.5, 0, 0});
+  p.rolling_resistance = 0.01;
+  mm::Simulation sim({floorOf(200, 10, 0.01), p});
+  sim.placeMarble(p.start_position, p.start_velocity, {0, 0.5 / kRadius, 0});
+  run(&sim, 2.0);
+  return relative(sim.marble().velocity.x(), 0.5 - 5.0 / 7.0 * 0.01 * kGravity * 2.0);
+}
+
+/// Quadratic air drag on a level floor from 20 m/s for 1 s: v = v0 / (1 + c k v0 t), with
+/// k = rho C_d A / (2 m), c = 1 sliding and 5/7 rolling (the spin takes its share).
+double dragError(const Option& o) {
+  mm::Params p = placedAt(o.params(), {-24, 0, kRadius}, {20, 0, 0});
+  p.drag_coefficient = 0.47;
+  mm::Simulation sim({floorOf(50, 3, 1.0), p});
+  if (o.model == mm::Model::Rolling)
+    sim.placeMarble(p.start_position, {20, 0, 0}, {0, 20 / kRadius, 0});
+  run(&sim, 1.0);
+  const double k = p.air_density * p.drag_coefficient * 3.14159265358979323846 * kRadius * kRadius /
+                   (2 * p.marbleMass());
+  const double c = o.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0;
+  return relative(sim.marble().velocity.x(), 20 / (1 + c * k * 20));
+}
+
+// --- The sweep -----------------------------------------------------------------------------------
+
+const char* name(mm::Model m) {
+  return m == mm::Model::Rolling ? "rolling" : "smooth";
+}
+
+const char* name(mm::IntegratorKind i) {
+  switch (i) {
+    case mm::IntegratorKind::SemiImplicitEuler:
+      return "semi_implicit_euler";
+    case mm::IntegratorKind::VelocityVerlet:
+      return "velocity_verlet";
+    case mm::IntegratorKind::RungeKutta4:
+      return "rk4";
+  }
+  return "?";
+}
+
+/// The largest difference between the impact times of a run and the reference's (a missing
+/// impact counts as the whole run, 10 s).
+double impactTimeError(const std::vector<double>& run, const std::vector<double>& reference) {
+  double worst = 0;
+  for (std::size_t k = 0; k < reference.size(); ++k)
+    worst = std::max(worst, k < run.size() ? std::abs(run[k] - reference[k]) : 10.0);
+  return worst;
+}
+
+/// The name of the preset that is this option, or "".
+std::string presetOf(const Option& o) {
+  for (const char* preset : {"realtime", "fast", "accurate"}) {
+    mm::Params p;
+    mm::setParam(p, "preset", preset);
+    if (p.model == o.model && p.integrator == o.integrator && p.step == o.step &&
+        p.substeps == o.substeps)
+      return preset;
+  }
+  return "";
+}
+
+int usage() {
+  std::cerr << "Usage: marble_maze_tradeoff [--quick] [--repeats N] [--out FILE]\n"
+               "  Measures cost and error for every model, integrator, step (1e-4 to 2e-2 s)\n"
+               "  and substeps (1, 4, 16), and writes them as CSV (default: standard output).\n"
+               "  --quick: two steps and one substep count, one repeat (a check, in seconds).\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  int repeats = 3;
+  std::string out_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--quick") {
+      quick = true;
+      repeats = 1;
+    } else if (flag == "--repeats" && i + 1 < argc) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (flag == "--out" && i + 1 < argc) {
+      out_path = argv[++i];
+    } else {
+      return usage();
+    }
+  }
+  const std::vector<double> steps =
+      quick ? std::vector<double>{1e-3, 1e-2}
+            : std::vector<double>{1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2};
+  const std::vector<int> substeps = quick ? std::vector<int>{1} : std::vector<int>{1, 4, 16};
+  const mm::Model models[] = {mm::Model::Smooth, mm::Model::Rolling};
+  const mm::IntegratorKind integrators[] = {mm::IntegratorKind::SemiImplicitEuler,
+                                            mm::IntegratorKind::VelocityVerlet,
+                                            mm::IntegratorKind::RungeKutta4};
+  std::vector<Option> options;
+  for (mm::Model m : models)
+    for (mm::IntegratorKind i : integrators)
+      for (int n : substeps)
+        for (double h : steps) options.push_back({m, i, h, n});
+
+  std::ofstream file;
+  if (!out_path.empty()) {
+    file.open(out_path);
+    if (!file) {
+      std::cerr << "marble_maze_tradeoff: cannot write '" << out_path << "'\n";
+      return 1;
+    }
+  }
+  std::ostream& out = out_path.empty() ? std::cout : file;
+  out << "model,integrator,step,substeps,preset,ns_per_simulated_s,times_real_time,"
+         "play_position_error_m,play_impact_time_error_s,incline,bounce,slip_to_roll,"
+         "rolling_resistance,drag\n";
+
+  // The reference of realistic play for each model: the smallest step, the best integrator.
+  Play references[2];
+  for (mm::Model m : models) {
+    std::cerr << "reference run (" << name(m) << ", rk4, 1e-4 s x 16)\n";
+    references[static_cast<int>(m)] =
+        play(Option{m, mm::IntegratorKind::RungeKutta4, 1e-4, 16}.params());
+  }
+  int done = 0;
+  for (const Option& o : options) {
+    ++done;
+    std::fprintf(stderr, "[%3d/%zu] %-8s %-20s step %-7g x %-2d\n", done, options.size(),
+                 name(o.model), name(o.integrator), o.step, o.substeps);
+    std::vector<double> costs;
+    Play first;
+    for (int r = 0; r < repeats; ++r) {
+      Play p = play(o.params());
+      costs.push_back(p.cpu_seconds / 10.0 * 1e9);
+      if (r == 0) first = p;
+    }
+    std::sort(costs.begin(), costs.end());
+    const double cost = costs[costs.size() / 2];  // the median
+    const Play& reference = references[static_cast<int>(o.model)];
+    const bool rolling = o.model == mm::Model::Rolling;
+    out << name(o.model) << ',' << name(o.integrator) << ',' << number(o.step) << ',' << o.substeps
+        << ',' << presetOf(o) << ',' << number(cost) << ',' << number(1e9 / cost) << ','
+        << number((first.at_five_seconds - reference.at_five_seconds).norm()) << ','
+        << number(impactTimeError(first.impacts, reference.impacts)) << ','
+        << number(inclineError(o)) << ',' << number(bounceError(o)) << ','
+        << (rolling ? number(slipToRollError(o)) : "") << ','
+        << (rolling ? number(rollingResistanceError(o)) : "") << ',' << number(dragError(o))
+        << std::endl;
+  }
+  return 0;
+}

@@ -102,7 +102,7 @@ struct Preset {
 };
 const Preset kPresets[] = {
     {"realtime", IntegratorKind::VelocityVerlet, 0.001, 1, Model::Rolling},
-    {"fast", IntegratorKind::VelocityVerlet, 0.01, 1, Model::Rolling},
+    {"fast", IntegratorKind::VelocityVerlet, 0.005, 1, Model::Rolling},
     {"accurate", IntegratorKind::RungeKutta4, 0.0001, 1, Model::Rolling},
 };
 

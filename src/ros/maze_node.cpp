@@ -143,9 +143,12 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   timer_ = nh.createTimer(ros::Duration(1.0 / settings_.update_rate), &MazeNode::onTimer, this);
 
   const mm::Params& p = sim_->params();
-  ROS_INFO("marble_maze: maze '%s' (%d x %d x %d tiles), model %s, step %g s x %d substeps",
-           sim_->maze().name().c_str(), sim_->maze().size().x(), sim_->maze().size().y(),
-           sim_->maze().size().z(), mm::getParam(p, "model").c_str(), p.step, p.substeps);
+  ROS_INFO(
+      "marble_maze: maze '%s' (%d x %d x %d tiles), model %s, integrator %s, step %g s x %d "
+      "substeps",
+      sim_->maze().name().c_str(), sim_->maze().size().x(), sim_->maze().size().y(),
+      sim_->maze().size().z(), mm::getParam(p, "model").c_str(),
+      mm::getParam(p, "integrator").c_str(), p.step, p.substeps);
 }
 
 ros::Time MazeNode::stampOfStep(std::uint64_t step) const {

@@ -222,7 +222,8 @@ int run(const Options& o) {
     const mm::Vec3 b = sim->marbleInBoard();
     s << "maze " << sim->maze().name() << ": " << sim->maze().size().x() << " x "
       << sim->maze().size().y() << " x " << sim->maze().size().z() << " tiles, model "
-      << mm::getParam(scene.params, "model") << ", step " << scene.params.step << " s x "
+      << mm::getParam(scene.params, "model") << ", integrator "
+      << mm::getParam(scene.params, "integrator") << ", step " << scene.params.step << " s x "
       << scene.params.substeps << "\n";
     int collisions = 0;
     for (const mm::Event& e : all_events) {

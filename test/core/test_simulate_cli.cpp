@@ -86,12 +86,48 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
   }
 }
 
+TEST(SimulateCli, EachIntegratorAndPresetRunsAndAWrongOneIsRefusedWithTheChoices) {
+  for (const char* integrator : {"semi_implicit_euler", "velocity_verlet", "rk4"}) {
+    const Result r =
+        runSimulate(std::string("--tilt 0.1,0 --duration 0.5 --set integrator=") + integrator);
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string("integrator ") + integrator), std::string::npos)
+        << r.output;
+  }
+  const std::pair<std::string, std::string> presets[] = {{"realtime", "step 0.001 s x 1"},
+                                                         {"fast", "step 0.005 s x 1"},
+                                                         {"accurate", "step 0.0001 s"}};
+  for (const auto& [preset, says] : presets) {
+    const Result r = runSimulate("--tilt 0.1,0 --duration 0.5 --set preset=" + preset);
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find(says), std::string::npos) << preset << ": " << r.output;
+  }
+  const Result later = runSimulate("--duration 0.1 --set preset=fast --set step=0.002");
+  EXPECT_NE(later.output.find("step 0.002 s"), std::string::npos) << later.output;
+  const Result wrong = runSimulate("--set integrator=euler");
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_NE(wrong.output.find("expected one of 'semi_implicit_euler', 'velocity_verlet' or 'rk4'"),
+            std::string::npos)
+      << wrong.output;
+  EXPECT_EQ(runSimulate("--set preset=slow").status, 2);
+}
+
+TEST(SimulateCli, EveryStepFromATenthOfAMillisecondToTwentyRunsWithDefaultSettings) {
+  // The bounce threshold follows the step: no other key needs changing.
+  for (const char* integrator : {"semi_implicit_euler", "velocity_verlet", "rk4"})
+    for (const char* step : {"0.0001", "0.001", "0.007", "0.02"}) {
+      const Result r = runSimulate(std::string("--tilt 0.1,0 --duration 0.2 --set step=") + step +
+                                   " --set integrator=" + integrator);
+      EXPECT_EQ(r.status, 0) << integrator << " " << step << ": " << r.output;
+    }
+}
+
 TEST(SimulateCli, HelpListsEveryKey) {
   const Result r = runSimulate("--help");
   EXPECT_EQ(r.status, 0);
-  for (const char* key :
-       {"model", "step", "substeps", "restitution", "friction", "rolling_resistance",
-        "drag_coefficient", "start_position", "start_velocity", "tilt_limit", "tilt_rate_limit"})
+  for (const char* key : {"preset", "integrator", "model", "step", "substeps", "restitution",
+                          "friction", "rolling_resistance", "bounce_threshold", "drag_coefficient",
+                          "start_position", "start_velocity", "tilt_limit", "tilt_rate_limit"})
     EXPECT_NE(r.output.find(std::string("  ") + key), std::string::npos) << key;
 }
 

@@ -62,7 +62,8 @@ class BadParamTest(unittest.TestCase):
         return output
 
     def test_control_good_params_keep_running(self):
-        process = self.start("bp_control", "_restitution:=0.7", "_maze:=classic")
+        process = self.start("bp_control", "_restitution:=0.7", "_maze:=classic",
+                             "_preset:=fast", "_integrator:=rk4")
         try:
             process.wait(timeout=CONTROL_RUN)
             self.fail("the node exited (status %s) with good parameters; output:\n%s"
@@ -71,6 +72,8 @@ class BadParamTest(unittest.TestCase):
             pass
         output = self.stop(process)
         self.assertNotIn("FATAL", output)
+        # The preset set the step; the integrator set after it overrides the preset's.
+        self.assertIn("integrator rk4, step 0.005 s", output)
 
     def test_restitution_out_of_range(self):
         output = self.check_refused("bp_one", ["_restitution:=2.0"], "restitution")
@@ -87,6 +90,10 @@ class BadParamTest(unittest.TestCase):
 
     def test_unknown_model(self):
         self.check_refused("bp_five", ["_model:=wooden"], "model", "wooden")
+
+    def test_unknown_integrator_lists_the_accepted_ones(self):
+        self.check_refused("bp_six", ["_integrator:=leapfrog"], "integrator", "leapfrog",
+                           "velocity_verlet", "rk4")
 
 
 if __name__ == "__main__":

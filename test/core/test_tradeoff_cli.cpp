@@ -1,0 +1,80 @@
+// The trade program's short run (make tradeoff runs the full sweep): what it measures agrees with
+// what each scheme is known to do.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+/// One CSV row of the trade program, by column name.
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> runQuick() {
+  FILE* pipe = popen((std::string(TRADEOFF_PATH) + " --quick 2>/dev/null").c_str(), "r");
+  std::vector<std::string> lines;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) lines.emplace_back(buffer);
+  EXPECT_EQ(pclose(pipe), 0);
+  const auto split = [](std::string line) {
+    if (!line.empty() && line.back() == '\n') line.pop_back();
+    std::vector<std::string> fields;
+    std::stringstream in(line);
+    std::string field;
+    while (std::getline(in, field, ',')) fields.push_back(field);
+    if (!line.empty() && line.back() == ',') fields.emplace_back();
+    return fields;
+  };
+  std::vector<Row> rows;
+  if (lines.empty()) return rows;
+  const auto header = split(lines[0]);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto fields = split(lines[i]);
+    EXPECT_EQ(fields.size(), header.size()) << lines[i];
+    Row row;
+    for (std::size_t k = 0; k < fields.size() && k < header.size(); ++k) row[header[k]] = fields[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const Row& row, const std::string& key) {
+  return std::stod(row.at(key));
+}
+
+TEST(TradeoffCli, TheQuickRunMeasuresWhatEachSchemeIsKnownToDo) {
+  const std::vector<Row> rows = runQuick();
+  ASSERT_EQ(rows.size(), 12u);  // 2 models x 3 integrators x 2 steps
+  for (const Row& r : rows) {
+    const std::string what = r.at("model") + " " + r.at("integrator") + " " + r.at("step");
+    const double step = number(r, "step");
+    EXPECT_GT(number(r, "ns_per_simulated_s"), 0) << what;
+    if (r.at("integrator") == "semi_implicit_euler") {
+      // First order: the incline's error is exactly step / t (t = 1 s).
+      EXPECT_NEAR(number(r, "incline"), step, 1e-6 * step) << what;
+    } else {
+      // Exact under constant forces: rounding only.
+      EXPECT_LT(number(r, "incline"), 1e-12) << what;
+      EXPECT_LT(number(r, "bounce"), 1e-12) << what;
+    }
+    if (r.at("integrator") == "rk4") EXPECT_LT(number(r, "drag"), 1e-12) << what;
+    if (r.at("integrator") == "velocity_verlet") EXPECT_GT(number(r, "drag"), 1e-12) << what;
+  }
+  const auto find = [&](const char* integrator, const char* step) {
+    for (const Row& r : rows)
+      if (r.at("model") == "rolling" && r.at("integrator") == integrator && r.at("step") == step)
+        return r;
+    ADD_FAILURE() << integrator << " " << step;
+    return Row();
+  };
+  // Velocity Verlet's drag error is second order: a ten times longer step, a hundred times more.
+  const double ratio = number(find("velocity_verlet", "0.01"), "drag") /
+                       number(find("velocity_verlet", "0.001"), "drag");
+  EXPECT_NEAR(ratio, 100, 10);
+  EXPECT_EQ(find("velocity_verlet", "0.001").at("preset"), "realtime");
+}
+
+}  // namespace

@@ -30,9 +30,10 @@ struct Velocities {
 };
 
 /// The marble's dynamics as a scheme samples them: its velocities after `duration` from `start`
-/// under the field's forces and the forces of the contacts it touches (which keep it out of
-/// their tiles, with friction and rolling resistance), as one first-order step gives them. For
-/// forces that are constant over the stretch the change is linear in `duration`.
+/// under the field's forces and the forces of the contacts it rests or rolls on (which keep it
+/// out of their tiles, with friction and rolling resistance), as one first-order step gives
+/// them. Under constant forces, on contacts that hold the marble all along, the change is
+/// linear in `duration`.
 class Dynamics {
  public:
   virtual ~Dynamics() = default;
@@ -74,6 +75,9 @@ class Integrator {
                              const Stretch& stretch) const = 0;
   /// How far the state's velocity lies behind its position in time, in substeps.
   virtual double velocityLag() const { return 0; }
+  /// Whether its paths bend (impacts found on the curve) or run straight (on the chord). A bent
+  /// path can leave a tile and come back to it in one stretch; a straight one cannot.
+  virtual bool bends() const { return true; }
 };
 
 /// The scheme of that kind (schemes hold no state: one of each serves every simulation).

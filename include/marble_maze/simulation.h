@@ -73,14 +73,18 @@ class Simulation {
     explicit ContactDynamics(Simulation* sim) : sim_(sim) {}
     Velocities after(const Velocities& start, double duration) override;
     bool constantForces() const override { return sim_->forces_.constant(); }
+    /// A new stretch: the first sample's outcomes say which contacts hold the marble.
+    void beginStretch() { sampled_ = false; }
 
    private:
     Simulation* sim_;
+    bool sampled_ = false;
   };
 
   void substep(double h, double start_time);
   void pushOut();
   void advance(double h, double start_time, const GridFrame& start);
+  void chooseActingContacts();
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const;
   MarbleBody body() const;
@@ -99,8 +103,13 @@ class Simulation {
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame
   std::uint64_t steps_ = 0;
   std::vector<Event> events_;
-  std::vector<Contact> contacts_;  // reused: no allocation per step
-  std::vector<ContactOutcome> outcomes_;
+  std::vector<Contact> contacts_;         // reused: no allocation per step
+  std::vector<ContactOutcome> outcomes_;  // of the last impact
+  // The contacts whose forces act over the current stretch, and what they did in its first
+  // sample; a bent path leaves out the contacts it is leaving (it may come back to them: an
+  // impact then, found by the sweep).
+  std::vector<Contact> acting_;
+  std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };
 
 }  // namespace marble_maze

@@ -135,10 +135,11 @@ bool capsuleImpact(const Vec3& o, const Vec3& d, const Vec3& start, int axis, do
   return *time < kNone;
 }
 
-/// Whether the segment from o by d meets the box grown by `grow` on every side (slab test; true
-/// when it starts inside).
-bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow) {
-  double enter = 0, leave = 1;
+/// Whether the segment from o by d meets the box grown by `grow` on every side, and the fraction
+/// where it goes in (0 when it starts inside): the slab test.
+bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow,
+                     double* enter = nullptr) {
+  double in = 0, out = 1;
   for (int a = 0; a < 3; ++a) {
     const double lo = box.lower[a] - grow, hi = box.upper[a] + grow;
     if (d[a] == 0) {
@@ -147,10 +148,11 @@ bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow) 
     }
     double t1 = (lo - o[a]) / d[a], t2 = (hi - o[a]) / d[a];
     if (t1 > t2) std::swap(t1, t2);
-    enter = std::max(enter, t1);
-    leave = std::min(leave, t2);
-    if (enter > leave) return false;
+    in = std::max(in, t1);
+    out = std::min(out, t2);
+    if (in > out) return false;
   }
+  if (enter) *enter = in;
   return true;
 }
 
@@ -189,6 +191,23 @@ void distanceQuartic(const Sweep& w, const Vec3& feature, const int* axes, int c
   c[2] = qq + 2 * pr;
   c[3] = 2 * qr;
   c[4] = rr;
+}
+
+/// The first s in (lo, hi] at which the quartic goes from positive to negative and `accept(s)`.
+template <typename Accept>
+bool firstDescentWhere(const double* c, double lo, double hi, Accept accept, double* s) {
+  double roots[4];
+  const int count = signChangesIn(c, 4, lo, hi, roots);
+  double previous = lo;
+  for (int k = 0; k < count; ++k) {
+    const double before = evaluatePolynomial(c, 4, 0.5 * (previous + roots[k]));
+    previous = roots[k];
+    if (roots[k] > lo && before > 0 && accept(roots[k])) {
+      *s = roots[k];
+      return true;
+    }
+  }
+  return false;
 }
 
 /// First impact, before `before`, of a bent path against a box grown by the radius with rounded
@@ -230,10 +249,16 @@ bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* 
         const int axes[2] = {b, d};
         double c[5], s;
         distanceQuartic(w, edge, axes, 2, r, c);
-        if (!firstDescent(c, 4, 0, 1, &s) || s >= best) continue;
-        const double along = w.at(s)[a];
-        if (along < box.lower[a] || along > box.upper[a]) continue;
-        edge[a] = along;
+        // The path may go into the edge's cylinder beyond the edge's ends and again within.
+        if (!firstDescentWhere(
+                c, 0, std::min(1.0, best),
+                [&](double t) {
+                  const double along = w.at(t)[a];
+                  return along >= box.lower[a] && along <= box.upper[a];
+                },
+                &s))
+          continue;
+        edge[a] = w.at(s)[a];
         best = s;
         *point = edge;
       }
@@ -259,20 +284,9 @@ bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* 
 
 bool sphereBoxImpact(const Vec3& o, const Vec3& d, double radius, const Box& box, double* time,
                      Vec3* point) {
-  // Where the path enters the box grown by the radius (slab test).
-  double enter = 0, leave = 1;
-  for (int a = 0; a < 3; ++a) {
-    const double lo = box.lower[a] - radius, hi = box.upper[a] + radius;
-    if (d[a] == 0) {
-      if (o[a] < lo || o[a] > hi) return false;
-      continue;
-    }
-    double t1 = (lo - o[a]) / d[a], t2 = (hi - o[a]) / d[a];
-    if (t1 > t2) std::swap(t1, t2);
-    enter = std::max(enter, t1);
-    leave = std::min(leave, t2);
-    if (enter > leave) return false;
-  }
+  // Where the path enters the box grown by the radius.
+  double enter;
+  if (!segmentMeetsBox(o, d, box, radius, &enter)) return false;
   // Beyond how many of the box's sides that point lies tells a face from an edge or a corner.
   const Vec3 p = o + enter * d;
   int outside[3], count = 0;
@@ -360,7 +374,10 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     const Vec3 reach = Vec3::Constant(radius + sag / (static_cast<double>(pieces) * pieces));
     const TileRange range = tileRange(maze, a.cwiseMin(b) - reach, a.cwiseMax(b) + reach);
     forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
-      if ((w.from - closestPoint(box, w.from)).squaredNorm() < touching) return;  // a contact
+      // A tile touched at the start is a contact, left to findContacts, unless a bent path is
+      // leaving it: that path may come back to it in this stretch (a small bounce).
+      const Vec3 away = w.from - closestPoint(box, w.from);
+      if (away.squaredNorm() < touching && !(bent && away.dot(w.rate(0)) > 0)) return;
       double time;
       Vec3 q;
       if (bent) {

@@ -24,7 +24,7 @@ double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity
 
 bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const {
   for (const Contact& c : contacts)
-    if (-(velocity - c.surface_velocity).dot(c.normal) > params_.bounce_threshold) return true;
+    if (-(velocity - c.surface_velocity).dot(c.normal) > params_.bounceThreshold()) return true;
   return false;
 }
 
@@ -36,7 +36,7 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* bod
     const Contact& c = contacts[i];
     const double approach = -(body->velocity - c.surface_velocity).dot(c.normal);
     (*outcomes)[i].approach_speed = approach;
-    (*outcomes)[i].bounce = approach > params_.bounce_threshold;
+    (*outcomes)[i].bounce = approach > params_.bounceThreshold();
   }
   const MarbleBody before = *body;
   iterate(contacts, true, body, outcomes);

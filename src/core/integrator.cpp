@@ -51,6 +51,7 @@ class SemiImplicitEuler : public Integrator {
     return t;
   }
   double velocityLag() const override { return 0.5; }
+  bool bends() const override { return false; }
 };
 
 /// Second order, and exact under constant forces: x + v h + a h^2 / 2 with a the acceleration
@@ -78,10 +79,7 @@ class RungeKutta4 : public Integrator {
   Trajectory advance(Dynamics& dynamics, const Velocities& start,
                      const Stretch& stretch) const override {
     const double h = stretch.duration;
-    if (dynamics.constantForces()) {
-      const Velocities end = dynamics.after(start, h);
-      return curve(start, end, 0.5 * (start.linear + end.linear) * h, h);
-    }
+    if (dynamics.constantForces()) return VelocityVerlet().advance(dynamics, start, stretch);
     // k_i: the velocity change over the whole stretch at stage i (h times the acceleration).
     const Velocities& v1 = start;
     const Velocities k1 = minus(dynamics.after(v1, h), v1);

@@ -111,9 +111,7 @@ void applyPreset(Params& p, const std::string& name) {
     p.preset = name;
     return;
   }
-  std::vector<std::pair<std::string, int>> names;
   for (const Preset& preset : kPresets) {
-    names.emplace_back(preset.name, 0);
     if (name != preset.name) continue;
     p.integrator = preset.integrator;
     p.step = preset.step;
@@ -122,7 +120,9 @@ void applyPreset(Params& p, const std::string& name) {
     p.preset = name;
     return;
   }
-  names.emplace_back("none", 0);
+  std::vector<std::pair<std::string, const Preset*>> names;
+  for (const Preset& preset : kPresets) names.emplace_back(preset.name, &preset);
+  names.emplace_back("none", nullptr);
   throw ParamError("preset: expected one of " + listOf(names) + ", got '" + name + "'");
 }
 
@@ -262,7 +262,7 @@ double Params::bounceThreshold() const {
 void validate(const Params& p) {
   if (p.bounceThreshold() < p.leastBounceThreshold()) {
     std::ostringstream msg;
-    msg << "bounce_threshold: " << p.bounce_threshold
+    msg << "bounce_threshold: " << p.bounceThreshold()
         << " m/s is below 2 g step/substeps = " << p.leastBounceThreshold()
         << " m/s, which semi_implicit_euler needs; raise it, shorten the step or leave it auto";
     throw ParamError(msg.str());

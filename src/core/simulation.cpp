@@ -147,15 +147,25 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
   MarbleBody b = sim_->body();
   b.velocity = start.linear + sim_->forces_.acceleration(start.linear) * duration;
   b.angular_velocity = start.angular;
-  sim_->solver_.constrain(sim_->contacts_, &b, &sim_->outcomes_);
+  sim_->solver_.constrain(sim_->acting_, &b, &sim_->sample_outcomes_);
+  if (!sampled_) sim_->acting_outcomes_ = sim_->sample_outcomes_;
+  sampled_ = true;
   return {b.velocity, b.angular_velocity};
+}
+
+void Simulation::chooseActingContacts() {
+  acting_.clear();
+  for (const Contact& c : contacts_) {
+    const bool leaving = (marble_.velocity - c.surface_velocity).dot(c.normal) > 1e-9;
+    if (!(leaving && integrator_->bends())) acting_.push_back(c);
+  }
 }
 
 void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
   // The path may not run into a tile the marble touches, whatever the velocities it was built
   // from said: it would end inside the tile. Its rate is linear in s, so a path that leaves
   // neither at its start nor at its end is clear of the tile all along.
-  for (const Contact& c : contacts_) {
+  for (const Contact& c : acting_) {
     const Vec3& n = c.normal;
     const double start_into = (path->first / duration - c.surface_velocity).dot(n);
     if (start_into < 0) {
@@ -182,9 +192,9 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const 
   // A contact that holds the marble leaves it no normal speed relative to the board, so it
   // stays on the surface: what the board's turning adds to the path across it (second order in
   // the step) would otherwise lift it off or sink it in by a few nanometres a step.
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    if (!outcomes_[i].holds()) continue;
-    const Vec3 normal = start.rotation.transpose() * contacts_[i].normal;
+  for (std::size_t i = 0; i < acting_.size(); ++i) {
+    if (!acting_outcomes_[i].holds()) continue;
+    const Vec3 normal = start.rotation.transpose() * acting_[i].normal;
     sweep->path -= sweep->path.dot(normal) * normal;
     sweep->bend -= sweep->bend.dot(normal) * normal;
   }
@@ -201,6 +211,8 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
   double done = 0;  // fraction of the substep
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
+    chooseActingContacts();
+    dynamics.beginStretch();
     Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
                                            Stretch{rest, h, impacts > 0});
     keepOutOfContacts(&path, rest);
@@ -234,6 +246,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
     for (const Contact& c : contacts_) found = found || c.normal.dot(hit.contact.normal) > 1 - 1e-9;
     if (!found) contacts_.push_back(hit.contact);
     impact(start_time + done * h);
+    if (!(done < 1)) return;  // at the very end of the substep: nothing left to move
   }
   // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 }

@@ -10,6 +10,7 @@
 
 #include "marble_maze/MarbleState.h"
 #include "marble_maze/MazeEvent.h"
+#include "maze_description.h"
 #include "maze_markers.h"
 
 namespace marble_maze_ros {
@@ -131,6 +132,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
 
   state_pub_ = nh.advertise<marble_maze::MarbleState>("marble_state", 10);
   event_pub_ = nh.advertise<marble_maze::MazeEvent>("events", 100);
+  maze_pub_ = nh.advertise<marble_maze::MazeDescription>("maze", 1, true);
   maze_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("maze_markers", 1, true);
   marble_marker_pub_ = nh.advertise<visualization_msgs::Marker>("marble_marker", 10);
   const auto hints = ros::TransportHints().tcpNoDelay();
@@ -139,6 +141,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   reset_srv_ = nh.advertiseService("reset", &MazeNode::onReset, this);
   pause_srv_ = nh.advertiseService("pause", &MazeNode::onPause, this);
   resume_srv_ = nh.advertiseService("resume", &MazeNode::onResume, this);
+  maze_pub_.publish(describe({sim_->maze(), sim_->params()}, settings_.board_frame));
   maze_markers_pub_.publish(mazeMarkers(sim_->maze(), settings_.board_frame));
   timer_ = nh.createTimer(ros::Duration(1.0 / settings_.update_rate), &MazeNode::onTimer, this);
 

@@ -64,7 +64,7 @@ class MazeNode {
   ros::Time last_state_stamp_, last_marker_stamp_;
 
   ros::Subscriber tilt_sub_, tilt_rate_sub_;
-  ros::Publisher state_pub_, event_pub_, maze_markers_pub_, marble_marker_pub_;
+  ros::Publisher state_pub_, event_pub_, maze_pub_, maze_markers_pub_, marble_marker_pub_;
   ros::ServiceServer reset_srv_, pause_srv_, resume_srv_;
   tf2_ros::TransformBroadcaster tf_;
   ros::Timer timer_;

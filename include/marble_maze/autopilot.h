@@ -1,0 +1,52 @@
+// The autopilot: plays the game as a person would, from what another node can see (the maze and
+// the marble's position and velocity in the board frame), by tilting the board. It plans a route
+// to a goal (RoutePlanner) and follows it with a velocity controller that slows before each turn.
+// ROS-free, so that the ROS autopilot node, tests and the runner share it.
+#pragma once
+
+#include "marble_maze/route_planner.h"
+
+namespace marble_maze {
+
+struct AutopilotSettings {
+  double tilt_limit = 0.17453292519943295;  ///< rad: the board's
+  /// m/s^2 per unit sin(tilt) down the slope: (5/7) g for a rolling solid sphere, g sliding.
+  double acceleration_per_tilt = 5.0 / 7.0 * 9.81;
+  double max_speed = 0.1;       ///< m/s along the route
+  double braking = 0.3;         ///< share of the largest acceleration used to slow before turns
+  double response_time = 0.12;  ///< s: how fast the velocity error is corrected
+  double hole_margin = 3.0;     ///< marble radii: keep this far from holes where there is room
+};
+
+/// Roll and pitch (rad) for the board.
+struct Tilt {
+  double roll = 0;
+  double pitch = 0;
+};
+
+class Autopilot {
+ public:
+  Autopilot(const Maze& maze, double marble_radius, const AutopilotSettings& settings);
+
+  /// Plans from the marble's board-frame position; false when no goal can be reached from there.
+  bool plan(const Vec2& position);
+  const Route& route() const { return route_; }
+  /// The waypoint it steers for now.
+  std::size_t next() const { return next_; }
+
+  /// The tilt to aim the board at, from the marble's board-frame position and velocity. Plans
+  /// again when the marble has left its route (a bounce into another column).
+  Tilt steer(const Vec2& position, const Vec2& velocity);
+
+ private:
+  bool onRoute(const Vec2& position) const;
+  double distanceToTurn(const Vec2& position) const;
+
+  double radius_;
+  AutopilotSettings settings_;
+  RoutePlanner planner_;
+  Route route_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace marble_maze

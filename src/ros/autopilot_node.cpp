@@ -1,0 +1,162 @@
+// autopilot: plays the maze from ROS alone, as another node would. It reads the latched `maze`
+// and `marble_state`, plans a route to a goal around walls and holes, and steers the marble along
+// it by publishing `tilt` at ~rate (55 Hz, as the real game's motors are driven), within the
+// tilt limit. It draws its route on `autopilot_route` (a marker in the board frame). When the
+// marble is reset after a hole or the goal it plans and plays again; where no route exists it
+// says so and stops. Parameters: ~rate (Hz, 55), ~max_speed (m/s along the route, 0.1).
+#include <ros/ros.h>
+#include <visualization_msgs/Marker.h>
+
+#include <memory>
+
+#include "marble_maze/BoardTilt.h"
+#include "marble_maze/MarbleState.h"
+#include "marble_maze/MazeDescription.h"
+#include "marble_maze/autopilot.h"
+#include "marble_maze/board.h"
+#include "maze_description.h"
+
+namespace {
+namespace mm = marble_maze;
+
+class AutopilotNode {
+ public:
+  AutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+    rate_ = pnh.param("rate", 55.0);
+    max_speed_ = pnh.param("max_speed", 0.1);
+    if (!(rate_ > 0 && rate_ <= 1000))
+      throw std::runtime_error(pnh.resolveName("rate") + ": expected 0 < rate <= 1000 Hz");
+    if (!(max_speed_ > 0 && max_speed_ <= 10))
+      throw std::runtime_error(pnh.resolveName("max_speed") + ": expected 0 < speed <= 10 m/s");
+    tilt_pub_ = nh.advertise<mm::BoardTilt>("tilt", 10);
+    route_pub_ = nh.advertise<visualization_msgs::Marker>("autopilot_route", 1, true);
+    maze_sub_ = nh.subscribe("maze", 1, &AutopilotNode::onMaze, this);
+    state_sub_ = nh.subscribe("marble_state", 10, &AutopilotNode::onState, this);
+    timer_ = nh.createTimer(ros::Duration(1.0 / rate_), &AutopilotNode::onTimer, this);
+  }
+
+ private:
+  void onMaze(const mm::MazeDescription::ConstPtr& msg) {
+    try {
+      scene_ = marble_maze_ros::sceneOf(*msg);
+    } catch (const std::exception& e) {
+      ROS_ERROR("autopilot: %s", e.what());
+      return;
+    }
+    mm::AutopilotSettings settings;
+    settings.tilt_limit = scene_.params.tilt_limit;
+    settings.acceleration_per_tilt =
+        (scene_.params.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0) * scene_.params.gravity;
+    settings.max_speed = max_speed_;
+    pilot_ = std::make_unique<mm::Autopilot>(scene_.maze, scene_.params.marble_radius, settings);
+    board_frame_ = msg->header.frame_id;
+    playing_ = false;
+    ROS_INFO("autopilot: maze '%s'", msg->name.c_str());
+  }
+
+  void onState(const mm::MarbleState::ConstPtr& msg) { state_ = msg; }
+
+  void onTimer(const ros::TimerEvent&) {
+    if (!pilot_ || !state_) return;
+    const mm::MarbleState& s = *state_;
+    const bool finished = s.in_hole || s.at_goal || s.off_board;
+    if (finished) {
+      if (playing_) finish(s);
+      return;
+    }
+    const mm::Vec2 position(s.position_in_board.x, s.position_in_board.y);
+    if (!playing_ && !start(s, position)) return;
+    // The velocity in the board frame: the world's, turned back by the board's tilt.
+    const mm::Vec3 velocity = mm::Board::rotationFor(s.roll, s.pitch).transpose() *
+                              mm::Vec3(s.velocity.x, s.velocity.y, s.velocity.z);
+    const std::size_t waypoints = pilot_->route().waypoints.size();
+    const mm::Tilt tilt = pilot_->steer(position, velocity.head<2>());
+    if (pilot_->route().waypoints.size() != waypoints) publishRoute();  // planned again
+    publishTilt(tilt.roll, tilt.pitch);
+  }
+
+  bool start(const mm::MarbleState& s, const mm::Vec2& position) {
+    if (!pilot_->plan(position)) {
+      ROS_ERROR(
+          "autopilot: no route with room for the marble from (%.3f, %.3f) m in the board frame to "
+          "a goal of maze '%s'; stopping",
+          position.x(), position.y(), scene_.maze.name().c_str());
+      publishTilt(0, 0);
+      ros::shutdown();
+      return false;
+    }
+    playing_ = true;
+    started_ = s.header.stamp;
+    ROS_INFO("autopilot: playing: a route of %zu waypoints from (%.3f, %.3f) m",
+             pilot_->route().waypoints.size(), position.x(), position.y());
+    publishRoute();
+    return true;
+  }
+
+  void finish(const mm::MarbleState& s) {
+    playing_ = false;
+    const double took = (s.header.stamp - started_).toSec();
+    if (s.at_goal)
+      ROS_INFO("autopilot: reached the goal in %.2f s", took);
+    else
+      ROS_WARN("autopilot: the marble %s after %.2f s",
+               s.in_hole ? "fell into a hole" : "left the board", took);
+    publishTilt(0, 0);
+  }
+
+  void publishTilt(double roll, double pitch) {
+    mm::BoardTilt msg;
+    msg.header.stamp = ros::Time::now();
+    msg.roll = roll;
+    msg.pitch = pitch;
+    tilt_pub_.publish(msg);
+  }
+
+  void publishRoute() {
+    visualization_msgs::Marker m;
+    m.header.frame_id = board_frame_;
+    m.ns = "autopilot_route";
+    m.type = visualization_msgs::Marker::LINE_STRIP;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.orientation.w = 1;
+    m.scale.x = 0.002;  // m, the line's width
+    m.color.r = 1.0;
+    m.color.g = 0.55;
+    m.color.a = 0.9;
+    m.frame_locked = true;
+    for (const mm::Vec2& w : pilot_->route().waypoints) {
+      geometry_msgs::Point p;
+      p.x = w.x();
+      p.y = w.y();
+      p.z = 0.001;  // just above the floor
+      m.points.push_back(p);
+    }
+    route_pub_.publish(m);
+  }
+
+  double rate_ = 55, max_speed_ = 0.1;
+  mm::Scene scene_;
+  std::unique_ptr<mm::Autopilot> pilot_;
+  std::string board_frame_ = "board";
+  mm::MarbleState::ConstPtr state_;
+  bool playing_ = false;
+  ros::Time started_;
+  ros::Publisher tilt_pub_, route_pub_;
+  ros::Subscriber maze_sub_, state_sub_;
+  ros::Timer timer_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "autopilot");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    AutopilotNode node(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s", e.what());
+    return 1;
+  }
+  return 0;
+}

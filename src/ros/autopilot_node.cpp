@@ -1,12 +1,17 @@
 // autopilot: plays the maze from ROS alone, as another node would. It reads the latched `maze`
 // and `marble_state`, plans a route to a goal around walls and holes, and steers the marble along
 // it by publishing `tilt` at ~rate (55 Hz, as the real game's motors are driven), within the
-// tilt limit. It draws its route on `autopilot_route` (a marker in the board frame). When the
-// marble is reset after a hole or the goal it plans and plays again; where no route exists it
-// says so and stops. Parameters: ~rate (Hz, 55), ~max_speed (m/s along the route, 0.1).
+// tilt limit. It draws its route on `autopilot_route` (a marker in the board frame) and says what
+// it does on `~status` (latched: playing, reached the goal, fell in, no route). When the marble
+// is reset after a hole or the goal it plans and plays again; where no route exists it says so,
+// levels the board and stops playing until the marble is reset or a new maze comes.
+// Parameters: ~rate (Hz, 55), ~max_speed (m/s along the route, 0.1).
 #include <ros/ros.h>
+#include <std_msgs/String.h>
 #include <visualization_msgs/Marker.h>
 
+#include <cstdarg>
+#include <cstdio>
 #include <memory>
 
 #include "marble_maze/BoardTilt.h"
@@ -30,6 +35,7 @@ class AutopilotNode {
       throw std::runtime_error(pnh.resolveName("max_speed") + ": expected 0 < speed <= 10 m/s");
     tilt_pub_ = nh.advertise<mm::BoardTilt>("tilt", 10);
     route_pub_ = nh.advertise<visualization_msgs::Marker>("autopilot_route", 1, true);
+    status_pub_ = pnh.advertise<std_msgs::String>("status", 1, true);
     maze_sub_ = nh.subscribe("maze", 1, &AutopilotNode::onMaze, this);
     state_sub_ = nh.subscribe("marble_state", 10, &AutopilotNode::onState, this);
     timer_ = nh.createTimer(ros::Duration(1.0 / rate_), &AutopilotNode::onTimer, this);
@@ -51,6 +57,7 @@ class AutopilotNode {
     pilot_ = std::make_unique<mm::Autopilot>(scene_.maze, scene_.params.marble_radius, settings);
     board_frame_ = msg->header.frame_id;
     playing_ = false;
+    stuck_ = false;
     ROS_INFO("autopilot: maze '%s'", msg->name.c_str());
   }
 
@@ -62,8 +69,10 @@ class AutopilotNode {
     const bool finished = s.in_hole || s.at_goal || s.off_board;
     if (finished) {
       if (playing_) finish(s);
+      stuck_ = false;  // a reset gives it another go
       return;
     }
+    if (stuck_) return;
     const mm::Vec2 position(s.position_in_board.x, s.position_in_board.y);
     if (!playing_ && !start(s, position)) return;
     // The velocity in the board frame: the world's, turned back by the board's tilt.
@@ -77,18 +86,18 @@ class AutopilotNode {
 
   bool start(const mm::MarbleState& s, const mm::Vec2& position) {
     if (!pilot_->plan(position)) {
-      ROS_ERROR(
-          "autopilot: no route with room for the marble from (%.3f, %.3f) m in the board frame to "
-          "a goal of maze '%s'; stopping",
+      say(ros::console::levels::Error,
+          "no route with room for the marble from (%.3f, %.3f) m in the board frame to a goal of "
+          "maze '%s': stopped",
           position.x(), position.y(), scene_.maze.name().c_str());
       publishTilt(0, 0);
-      ros::shutdown();
+      stuck_ = true;
       return false;
     }
     playing_ = true;
     started_ = s.header.stamp;
-    ROS_INFO("autopilot: playing: a route of %zu waypoints from (%.3f, %.3f) m",
-             pilot_->route().waypoints.size(), position.x(), position.y());
+    say(ros::console::levels::Info, "playing: a route of %zu waypoints from (%.3f, %.3f) m",
+        pilot_->route().waypoints.size(), position.x(), position.y());
     publishRoute();
     return true;
   }
@@ -97,11 +106,24 @@ class AutopilotNode {
     playing_ = false;
     const double took = (s.header.stamp - started_).toSec();
     if (s.at_goal)
-      ROS_INFO("autopilot: reached the goal in %.2f s", took);
+      say(ros::console::levels::Info, "reached the goal in %.2f s", took);
     else
-      ROS_WARN("autopilot: the marble %s after %.2f s",
-               s.in_hole ? "fell into a hole" : "left the board", took);
+      say(ros::console::levels::Warn, "the marble %s after %.2f s",
+          s.in_hole ? "fell into a hole" : "left the board", took);
     publishTilt(0, 0);
+  }
+
+  /// Logs a line and puts it on ~status.
+  void say(ros::console::levels::Level level, const char* format, ...) {
+    char text[512];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(text, sizeof text, format, args);
+    va_end(args);
+    ROS_LOG(level, ROSCONSOLE_DEFAULT_NAME, "autopilot: %s", text);
+    std_msgs::String status;
+    status.data = text;
+    status_pub_.publish(status);
   }
 
   void publishTilt(double roll, double pitch) {
@@ -140,8 +162,9 @@ class AutopilotNode {
   std::string board_frame_ = "board";
   mm::MarbleState::ConstPtr state_;
   bool playing_ = false;
+  bool stuck_ = false;  // no route: waits for a reset or a new maze
   ros::Time started_;
-  ros::Publisher tilt_pub_, route_pub_;
+  ros::Publisher tilt_pub_, route_pub_, status_pub_;
   ros::Subscriber maze_sub_, state_sub_;
   ros::Timer timer_;
 };

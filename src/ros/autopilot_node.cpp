@@ -141,10 +141,11 @@ class AutopilotNode {
     m.type = visualization_msgs::Marker::LINE_STRIP;
     m.action = visualization_msgs::Marker::ADD;
     m.pose.orientation.w = 1;
-    m.scale.x = 0.002;  // m, the line's width
-    m.color.r = 1.0;
-    m.color.g = 0.55;
-    m.color.a = 0.9;
+    m.scale.x = 0.0015;  // m, the line's width
+    m.color.r = 0.25;    // light blue: the marble and its trail are orange
+    m.color.g = 0.65;
+    m.color.b = 1.0;
+    m.color.a = 0.8;
     m.frame_locked = true;
     for (const mm::Vec2& w : pilot_->route().waypoints) {
       geometry_msgs::Point p;

@@ -1,5 +1,6 @@
 #include "maze_markers.h"
 
+#include <cstdio>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -82,7 +83,8 @@ void addFloorPatch(const Maze& maze, int i, int j, double lift, CubeLists* lists
 visualization_msgs::MarkerArray mazeMarkers(const Maze& maze, const std::string& board_frame) {
   CubeLists floor("floor", colour(0.85f, 0.70f, 0.48f));
   CubeLists walls("walls", colour(0.55f, 0.36f, 0.20f));
-  CubeLists holes("holes", colour(0.02f, 0.02f, 0.02f));
+  // Holes are dark but not opaque, so that a marble that fell in still shows through.
+  CubeLists holes("holes", colour(0.02f, 0.02f, 0.02f, 0.6f));
   CubeLists start("start", colour(0.20f, 0.45f, 0.95f, 0.8f));
   CubeLists goal("goal", colour(0.10f, 0.80f, 0.25f, 0.8f));
   for (int k = 0; k < maze.size().z(); ++k)
@@ -112,9 +114,71 @@ visualization_msgs::Marker marbleMarker(double radius, const std::string& marble
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
   m.scale.x = m.scale.y = m.scale.z = 2 * radius;
-  m.color = colour(0.75f, 0.77f, 0.80f);
+  m.color = colour(1.0f, 0.35f, 0.10f);
   m.frame_locked = true;
   return m;
+}
+
+visualization_msgs::MarkerArray liveMarkers(const Maze& maze, const std::vector<Vec3>& trail,
+                                            double radius, double roll, double pitch,
+                                            const std::string& board_frame) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker line;
+  line.header.frame_id = board_frame;
+  line.ns = "marble_trail";
+  line.type = visualization_msgs::Marker::LINE_STRIP;
+  line.action =
+      trail.size() < 2 ? visualization_msgs::Marker::DELETE : visualization_msgs::Marker::ADD;
+  line.pose.orientation.w = 1.0;
+  line.scale.x = 0.5 * radius;  // the line's width
+  line.color = colour(1.0f, 0.55f, 0.15f, 0.7f);
+  line.frame_locked = true;
+  for (const Vec3& p : trail) {
+    geometry_msgs::Point point;
+    point.x = p.x();
+    point.y = p.y();
+    point.z = p.z() - 0.8 * radius;  // low on the marble, so that the marble stands on its path
+    line.points.push_back(point);
+  }
+  array.markers.push_back(line);
+
+  // The board's normal, beside the middle of its near (-y) edge: it leans as the board tilts.
+  const Vec3 corner(0, -maze.extent().y() / 2 - 0.025, 0);
+  visualization_msgs::Marker arrow;
+  arrow.header.frame_id = board_frame;
+  arrow.ns = "tilt";
+  arrow.id = 0;
+  arrow.type = visualization_msgs::Marker::ARROW;
+  arrow.action = visualization_msgs::Marker::ADD;
+  arrow.pose.orientation.w = 1.0;
+  geometry_msgs::Point base, tip;
+  base.x = tip.x = corner.x();
+  base.y = tip.y = corner.y();
+  tip.z = 0.06;
+  arrow.points = {base, tip};
+  arrow.scale.x = 0.004;  // shaft diameter
+  arrow.scale.y = 0.008;  // head diameter
+  arrow.scale.z = 0.012;  // head length
+  arrow.color = colour(0.3f, 0.8f, 1.0f);
+  arrow.frame_locked = true;
+  array.markers.push_back(arrow);
+
+  visualization_msgs::Marker text = arrow;
+  text.id = 1;
+  text.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+  text.points.clear();
+  text.pose.position.x = corner.x();
+  text.pose.position.y = corner.y();
+  text.pose.position.z = 0.075;
+  text.scale.x = text.scale.y = 0;
+  text.scale.z = 0.012;  // the letters' height
+  text.color = colour(0.9f, 0.95f, 1.0f);
+  char words[64];
+  const double degrees = 180 / 3.14159265358979323846;
+  std::snprintf(words, sizeof words, "roll %+.1f°  pitch %+.1f°", roll * degrees, pitch * degrees);
+  text.text = words;
+  array.markers.push_back(text);
+  return array;
 }
 
 }  // namespace marble_maze_ros

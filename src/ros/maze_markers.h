@@ -5,6 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <string>
+#include <vector>
 
 #include "marble_maze/maze.h"
 
@@ -16,7 +17,16 @@ namespace marble_maze_ros {
 visualization_msgs::MarkerArray mazeMarkers(const marble_maze::Maze& maze,
                                             const std::string& board_frame);
 
-/// The marble: a steel-grey sphere at the origin of its own frame, frame-locked.
+/// The marble: a bright sphere at the origin of its own frame, frame-locked (the eye should find
+/// it first: the real one is steel, but a 12 mm steel ball is lost on a screen).
 visualization_msgs::Marker marbleMarker(double radius, const std::string& marble_frame);
+
+/// What changes as the game goes on: the marble's recent path (`trail`, board-frame positions,
+/// oldest first, drawn as a line on the board), and the board's tilt as an arrow along the
+/// board's normal beside the middle of its near (-y) edge, with the angles written above it.
+visualization_msgs::MarkerArray liveMarkers(const marble_maze::Maze& maze,
+                                            const std::vector<marble_maze::Vec3>& trail,
+                                            double radius, double roll, double pitch,
+                                            const std::string& board_frame);
 
 }  // namespace marble_maze_ros

@@ -134,6 +134,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
   event_pub_ = nh.advertise<marble_maze::MazeEvent>("events", 100);
   maze_pub_ = nh.advertise<marble_maze::MazeDescription>("maze", 1, true);
   maze_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("maze_markers", 1, true);
+  live_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("live_markers", 1);
   marble_marker_pub_ = nh.advertise<visualization_msgs::Marker>("marble_marker", 10);
   const auto hints = ros::TransportHints().tcpNoDelay();
   tilt_sub_ = nh.subscribe("tilt", 100, &MazeNode::onTilt, this, hints);
@@ -353,6 +354,16 @@ void MazeNode::publish(bool force) {
         marbleMarker(sim_->params().marble_radius, settings_.marble_frame);
     marble.header.stamp = stamp;
     marble_marker_pub_.publish(marble);
+    // The trail: the last 3 s at the marker rate; a jump (a reset, a place) starts a new one.
+    const mm::Vec3 here = sim_->marbleInBoard();
+    if (!trail_.empty() && (trail_.back() - here).norm() > 0.05) trail_.clear();
+    trail_.push_back(here);
+    while (trail_.size() > 3 * settings_.marker_rate) trail_.pop_front();
+    visualization_msgs::MarkerArray live =
+        liveMarkers(sim_->maze(), {trail_.begin(), trail_.end()}, sim_->params().marble_radius,
+                    sim_->board().roll(), sim_->board().pitch(), settings_.board_frame);
+    for (auto& m : live.markers) m.header.stamp = stamp;
+    live_markers_pub_.publish(live);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <deque>
 #include <memory>
 #include <string>
 
@@ -64,7 +65,9 @@ class MazeNode {
   ros::Time last_state_stamp_, last_marker_stamp_;
 
   ros::Subscriber tilt_sub_, tilt_rate_sub_;
-  ros::Publisher state_pub_, event_pub_, maze_pub_, maze_markers_pub_, marble_marker_pub_;
+  ros::Publisher state_pub_, event_pub_, maze_pub_, maze_markers_pub_, marble_marker_pub_,
+      live_markers_pub_;
+  std::deque<marble_maze::Vec3> trail_;  // the marble's recent board-frame positions
   ros::ServiceServer reset_srv_, pause_srv_, resume_srv_;
   tf2_ros::TransformBroadcaster tf_;
   ros::Timer timer_;

@@ -13,6 +13,9 @@ class Board {
 
   /// Back to the given tilt, at rest.
   void reset(double roll, double pitch);
+  /// New tilt limit, rate limit and response time; targets beyond the new limit are brought
+  /// within it, and the board moves there as it moves to any target.
+  void setLimits(const Params& params);
   /// Drive towards target angles (clamped to the tilt limit) like a servo: a first-order lag with
   /// the response time, at up to the tilt-rate limit.
   void setTargetTilt(double roll, double pitch);
@@ -36,11 +39,11 @@ class Board {
   double clampTilt(double angle) const;
   double clampRate(double rate) const;
 
-  double tilt_limit_;
-  double tilt_rate_limit_;    // 0 = unlimited
-  double response_time_;      // 0 = reaches a target at once (within the rate limit)
-  double approach_step_ = 0;  // the step the lag's approach_ was worked out for
-  double approach_ = 1;       // fraction of the way to the target covered in one step
+  double tilt_limit_ = 0;
+  double tilt_rate_limit_ = 0;  // 0 = unlimited
+  double response_time_ = 0;    // 0 = reaches a target at once (within the rate limit)
+  double approach_step_ = 0;    // the step the lag's approach_ was worked out for
+  double approach_ = 1;         // fraction of the way to the target covered in one step
   Drive drive_ = Drive::Target;
   double target_roll_ = 0, target_pitch_ = 0;
   double roll_rate_ = 0, pitch_rate_ = 0;

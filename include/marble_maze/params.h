@@ -65,11 +65,17 @@ struct ParamError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// One settable key: its name, unit and one line of help.
+/// One settable key: its name, unit, one line of help, and what it accepts (from which the
+/// node's dynamic_reconfigure description is made).
 struct ParamInfo {
+  enum class Type { Number, Whole, Choice, Text };
   std::string key;
   std::string unit;
   std::string help;
+  Type type = Type::Text;
+  double min = 0, max = 0;           ///< Number and Whole: the accepted range
+  std::vector<std::string> choices;  ///< Choice: the accepted names
+  bool live = false;                 ///< may change while a simulation runs (Simulation::setParams)
 };
 
 /// Every key, in the order the help lists them.

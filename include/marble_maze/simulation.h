@@ -25,6 +25,16 @@ struct Marble {
   int contacts = 0;  ///< tiles touched after the last step
 };
 
+/// Everything of a simulation that changes as it runs, and nothing else: with the same scene,
+/// restoring it continues the run bit for bit.
+struct SimulationState {
+  Marble marble;
+  Board board;
+  Vec3 held_in_grid = Vec3::Zero();
+  double time = 0;
+  std::uint64_t steps = 0;
+};
+
 /// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical
 /// states; nothing depends on wall time, addresses or threads.
 ///
@@ -35,6 +45,15 @@ class Simulation {
  public:
   /// Throws ParamError when the scene's parameters are inconsistent.
   explicit Simulation(const Scene& scene);
+
+  /// New physics from the next step on, the state kept (a tilt beyond a new limit is brought
+  /// within it). Throws ParamError, changing nothing, when they are inconsistent.
+  void setParams(const Params& params);
+  SimulationState state() const;
+  void restore(const SimulationState& state);
+  /// Why the marble cannot be placed at a board-frame position (inside a tile, off the board),
+  /// or "" when it can.
+  std::string whyNotPlaceable(const Vec3& position_in_board) const;
 
   /// The marble back to its start, at rest; the board back to its initial tilt, at rest.
   void reset();
@@ -52,7 +71,7 @@ class Simulation {
   const Params& params() const { return params_; }
   const Board& board() const { return board_; }
   const Marble& marble() const { return marble_; }
-  double time() const { return static_cast<double>(steps_) * params_.step; }
+  double time() const { return time_; }  ///< s: the sum of the steps taken
   std::uint64_t steps() const { return steps_; }
   /// The events of the last step, in order.
   const std::vector<Event>& events() const { return events_; }
@@ -101,6 +120,7 @@ class Simulation {
   Marble marble_;
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame
+  double time_ = 0;
   std::uint64_t steps_ = 0;
   std::vector<Event> events_;
   std::vector<Contact> contacts_;         // reused: no allocation per step

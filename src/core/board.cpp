@@ -5,11 +5,20 @@
 
 namespace marble_maze {
 
-Board::Board(const Params& params)
-    : tilt_limit_(params.tilt_limit),
-      tilt_rate_limit_(params.tilt_rate_limit),
-      response_time_(params.tilt_response_time) {
+Board::Board(const Params& params) {
+  setLimits(params);
   reset(params.initial_roll, params.initial_pitch);
+}
+
+void Board::setLimits(const Params& params) {
+  tilt_limit_ = params.tilt_limit;
+  tilt_rate_limit_ = params.tilt_rate_limit;
+  response_time_ = params.tilt_response_time;
+  approach_step_ = 0;  // the lag's step fraction is worked out again
+  target_roll_ = clampTilt(target_roll_);
+  target_pitch_ = clampTilt(target_pitch_);
+  roll_rate_ = clampRate(roll_rate_);
+  pitch_rate_ = clampRate(pitch_rate_);
 }
 
 Mat3 Board::rotationFor(double roll, double pitch) {

@@ -61,21 +61,31 @@ struct Entry {
   ParamInfo info;
   std::function<void(Params&, const std::string&)> set;
   std::function<std::string(const Params&)> get;
+  std::function<double(const Params&)> number;  // Number and Whole keys: the value, to check
 };
 
 /// A number member with its allowed range.
 Entry number(const char* key, const char* unit, const char* help, double Params::*member,
              double min, double max) {
-  return {{key, unit, help},
+  return {{key, unit, help, ParamInfo::Type::Number, min, max, {}, false},
           [=](Params& p, const std::string& text) { p.*member = parseNumber(key, text, min, max); },
-          [=](const Params& p) { return format(p.*member); }};
+          [=](const Params& p) { return format(p.*member); },
+          [=](const Params& p) { return p.*member; }};
+}
+
+/// The entry, marked as one that may change while a simulation runs.
+Entry live(Entry entry) {
+  entry.info.live = true;
+  return entry;
 }
 
 /// A member with named values; an unknown name is refused with the list of accepted ones.
 template <typename T>
 Entry choice(const char* key, const char* help, T Params::*member,
              std::vector<std::pair<std::string, T>> names) {
-  return {{key, "", help},
+  std::vector<std::string> choices;
+  for (const auto& named : names) choices.push_back(named.first);
+  return {{key, "", help, ParamInfo::Type::Choice, 0, 0, choices, false},
           [=](Params& p, const std::string& text) {
             for (const auto& [name, value] : names)
               if (name == text) {
@@ -128,22 +138,28 @@ void applyPreset(Params& p, const std::string& name) {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = {
-      {{"preset", "",
+      {{"preset",
+        "",
         "sets integrator, step, substeps and model for a use: realtime (a ROS graph "
         "controlling at ~55 Hz), fast (training agents), accurate (closest to the physics), "
-        "none; keys set after it override it"},
+        "none; keys set after it override it",
+        ParamInfo::Type::Choice,
+        0,
+        0,
+        {"realtime", "fast", "accurate", "none"},
+        false},
        [](Params& p, const std::string& text) { applyPreset(p, text); },
        [](const Params& p) { return p.preset; }},
       number("marble_radius", "m", "marble radius", &Params::marble_radius, 1e-4, 1.0),
       number("marble_density", "kg/m^3", "marble density (steel 7850)", &Params::marble_density,
              1.0, 1e5),
-      choice("model",
-             "contact model: smooth (frictionless, slides) or rolling (solid sphere, Coulomb "
-             "friction)",
-             &Params::model, {{"smooth", Model::Smooth}, {"rolling", Model::Rolling}}),
+      live(choice("model",
+                  "contact model: smooth (frictionless, slides) or rolling (solid sphere, "
+                  "Coulomb friction)",
+                  &Params::model, {{"smooth", Model::Smooth}, {"rolling", Model::Rolling}})),
       number("gravity", "m/s^2", "gravitational acceleration", &Params::gravity, 0.0, 1000.0),
-      number("restitution", "", "coefficient of restitution e of eq. (1)", &Params::restitution,
-             0.0, 1.0),
+      live(number("restitution", "", "coefficient of restitution e of eq. (1)",
+                  &Params::restitution, 0.0, 1.0)),
       {{"bounce_threshold", "m/s",
         "approach speeds below this are contacts, not bounces; auto: 0.02, and for "
         "semi_implicit_euler at least 2 g step/substeps"},
@@ -155,36 +171,38 @@ const std::vector<Entry>& entries() {
        [](const Params& p) {
          return p.bounce_threshold_auto ? std::string("auto") : format(p.bounce_threshold);
        }},
-      number("friction", "", "Coulomb friction coefficient (rolling model)", &Params::friction, 0.0,
-             10.0),
-      number("rolling_resistance", "", "rolling resistance coefficient, 0 = off",
-             &Params::rolling_resistance, 0.0, 1.0),
-      number("drag_coefficient", "", "air drag coefficient C_d of the sphere, 0 = off",
-             &Params::drag_coefficient, 0.0, 10.0),
+      live(number("friction", "", "Coulomb friction coefficient (rolling model)", &Params::friction,
+                  0.0, 10.0)),
+      live(number("rolling_resistance", "", "rolling resistance coefficient, 0 = off",
+                  &Params::rolling_resistance, 0.0, 1.0)),
+      live(number("drag_coefficient", "", "air drag coefficient C_d of the sphere, 0 = off",
+                  &Params::drag_coefficient, 0.0, 10.0)),
       number("air_density", "kg/m^3", "air density for the drag", &Params::air_density, 0.0, 100.0),
-      number("step", "s", "fixed time step", &Params::step, 1e-6, 0.1),
-      {{"substeps", "", "substeps per step (1..1000)"},
+      live(number("step", "s", "fixed time step", &Params::step, 1e-6, 0.1)),
+      {{"substeps", "", "substeps per step (1..1000)", ParamInfo::Type::Whole, 1, 1000, {}, true},
        [](Params& p, const std::string& text) {
          const double n = parseNumber("substeps", text, 1, 1000);
          if (n != std::floor(n))
            throw ParamError("substeps: expected a whole number, got '" + text + "'");
          p.substeps = static_cast<int>(n);
        },
-       [](const Params& p) { return std::to_string(p.substeps); }},
-      choice("integrator",
-             "time integrator: semi_implicit_euler (first order, cheapest), velocity_verlet "
-             "(second order, exact under constant forces), rk4 (fourth order, for air drag)",
-             &Params::integrator,
-             {{"semi_implicit_euler", IntegratorKind::SemiImplicitEuler},
-              {"velocity_verlet", IntegratorKind::VelocityVerlet},
-              {"rk4", IntegratorKind::RungeKutta4}}),
-      number("tilt_limit", "rad", "largest |roll| and |pitch| of the board", &Params::tilt_limit,
-             0.0, kPi / 2),
-      number("tilt_rate_limit", "rad/s", "largest tilt rate of the board, 0 = unlimited",
-             &Params::tilt_rate_limit, 0.0, 1000.0),
-      number("tilt_response_time", "s",
-             "time constant with which the board follows a target tilt (a servo), 0 = at once",
-             &Params::tilt_response_time, 0.0, 10.0),
+       [](const Params& p) { return std::to_string(p.substeps); },
+       [](const Params& p) { return static_cast<double>(p.substeps); }},
+      live(choice("integrator",
+                  "time integrator: semi_implicit_euler (first order, cheapest), velocity_verlet "
+                  "(second order, exact under constant forces), rk4 (fourth order, for air drag)",
+                  &Params::integrator,
+                  {{"semi_implicit_euler", IntegratorKind::SemiImplicitEuler},
+                   {"velocity_verlet", IntegratorKind::VelocityVerlet},
+                   {"rk4", IntegratorKind::RungeKutta4}})),
+      live(number("tilt_limit", "rad", "largest |roll| and |pitch| of the board",
+                  &Params::tilt_limit, 0.0, kPi / 2)),
+      live(number("tilt_rate_limit", "rad/s", "largest tilt rate of the board, 0 = unlimited",
+                  &Params::tilt_rate_limit, 0.0, 1000.0)),
+      live(number("tilt_response_time", "s",
+                  "time constant with which the board follows a target tilt (a servo), 0 = at "
+                  "once",
+                  &Params::tilt_response_time, 0.0, 10.0)),
       number("initial_roll", "rad", "board roll at the start", &Params::initial_roll, -kPi / 2,
              kPi / 2),
       number("initial_pitch", "rad", "board pitch at the start", &Params::initial_pitch, -kPi / 2,
@@ -260,6 +278,18 @@ double Params::bounceThreshold() const {
 }
 
 void validate(const Params& p) {
+  // Each number within its key's range: values set as text were checked as they were read, but
+  // a program can fill Params directly.
+  for (const Entry& e : entries()) {
+    if (!e.number) continue;
+    const double value = e.number(p);
+    if (!(value >= e.info.min && value <= e.info.max)) {
+      std::ostringstream msg;
+      msg << e.info.key << ": " << value << " is out of range [" << e.info.min << ", " << e.info.max
+          << "]";
+      throw ParamError(msg.str());
+    }
+  }
   if (p.bounceThreshold() < p.leastBounceThreshold()) {
     std::ostringstream msg;
     msg << "bounce_threshold: " << p.bounceThreshold()

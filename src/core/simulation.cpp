@@ -1,6 +1,7 @@
 #include "marble_maze/simulation.h"
 
 #include <cmath>
+#include <sstream>
 
 namespace marble_maze {
 namespace {
@@ -24,6 +25,51 @@ Simulation::Simulation(const Scene& scene)
       integrator_(&integratorFor(params_.integrator)) {
   validate(params_);
   reset();
+}
+
+void Simulation::setParams(const Params& params) {
+  validate(params);
+  params_ = params;
+  board_.setLimits(params_);
+  solver_ = ContactSolver(params_);
+  forces_ = FieldForces(params_);
+  integrator_ = &integratorFor(params_.integrator);
+  frame_ = gridFrame();
+}
+
+SimulationState Simulation::state() const {
+  return {marble_, board_, held_in_grid_, time_, steps_};
+}
+
+void Simulation::restore(const SimulationState& state) {
+  marble_ = state.marble;
+  board_ = state.board;
+  board_.setLimits(params_);
+  held_in_grid_ = state.held_in_grid;
+  time_ = state.time;
+  steps_ = state.steps;
+  frame_ = gridFrame();
+  events_.clear();
+}
+
+std::string Simulation::whyNotPlaceable(const Vec3& position_in_board) const {
+  if (!position_in_board.allFinite()) return "the position is not finite";
+  const Vec3 grid = position_in_board + maze_.pivot();
+  const Vec3 extent = maze_.extent();
+  if (grid.x() < 0 || grid.y() < 0 || grid.x() > extent.x() || grid.y() > extent.y())
+    return "off the board (outside its x-y extent)";
+  GridFrame level;  // the board at rest, in its own frame: the grid's corner at -pivot
+  level.origin = -maze_.pivot();
+  std::vector<Contact> touching;
+  findContacts(maze_, level, position_in_board, params_.marble_radius, 0, &touching);
+  for (const Contact& c : touching)
+    if (c.depth > 1e-9) {
+      std::ostringstream why;
+      why << "inside tile (" << c.tile.x() << ", " << c.tile.y() << ", " << c.tile.z() << ") by "
+          << c.depth << " m";
+      return why.str();
+    }
+  return "";
 }
 
 GridFrame Simulation::gridFrame() const {
@@ -77,7 +123,8 @@ double Simulation::energy() const {
 void Simulation::step() {
   events_.clear();
   const double h = params_.step / params_.substeps;
-  for (int i = 0; i < params_.substeps; ++i) substep(h, time() + i * h);
+  for (int i = 0; i < params_.substeps; ++i) substep(h, time_ + i * h);
+  time_ += params_.step;
   ++steps_;
 }
 

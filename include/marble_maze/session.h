@@ -1,0 +1,89 @@
+// A simulation as programs drive it, without ROS: tilt commands that take effect at a given
+// step, the timed actions of a game (the board levels when commands stop, rate commands run out,
+// the marble goes back to the start after a hole or the goal), pause, steps on demand, placing
+// the marble, another maze, other physics. Everything happens at a step and is counted in steps
+// of simulated time, never when a timer fires, so the same calls give bit-identical states: the
+// node (with a clock policy around it), simulate and replay share it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "marble_maze/simulation.h"
+
+namespace marble_maze {
+
+/// The timed actions, in seconds of simulated time; 0 switches one off.
+struct SessionSettings {
+  double tilt_timeout = 0;  ///< without a command this long, the board levels
+  double rate_timeout = 1;  ///< without a command this long, tilt rates stop (targets hold)
+  double auto_reset = 0;    ///< this long after a hole or the goal, the marble is put back
+};
+
+/// A tilt command: target angles (rad) or tilt rates (rad/s), applied at the start of a step.
+struct TiltCommand {
+  enum class Kind { Angles, Rates };
+  std::uint64_t step = 0;  ///< applied just before this step is taken (the next one if past)
+  Kind kind = Kind::Angles;
+  double roll = 0;
+  double pitch = 0;
+};
+
+class Session {
+ public:
+  /// Throws ParamError when the scene's parameters are inconsistent.
+  explicit Session(const Scene& scene, const SessionSettings& settings = SessionSettings());
+
+  /// Queues a command in step order (equal steps keep their order of arrival). False when the
+  /// queue was full: the command for the latest step was dropped.
+  bool command(const TiltCommand& command);
+  /// Takes `count` steps, paused or not: due commands first, then the timed actions. The events
+  /// of these steps are in events().
+  void run(std::uint64_t count);
+
+  /// The marble back on the start at rest, the board at its initial tilt, commands dropped.
+  void reset();
+  /// Puts the marble at a board-frame position with a world-frame velocity and spin; throws
+  /// std::invalid_argument naming the problem (inside a tile, off the board), changing nothing.
+  void place(const Vec3& position_in_board, const Vec3& velocity, const Vec3& spin);
+  /// Another maze and its physics; throws (ParamError) changing nothing when they are bad.
+  void load(const Scene& scene);
+  /// Other physics from the next step; throws ParamError changing nothing when inconsistent.
+  void setParams(const Params& params);
+
+  void pause() { paused_ = true; }
+  void resume() { paused_ = false; }
+  bool paused() const { return paused_; }
+
+  const Simulation& simulation() const { return sim_; }
+  const SessionSettings& settings() const { return settings_; }
+  std::uint64_t steps() const { return sim_.steps(); }
+  /// The events of the last run(), in order.
+  const std::vector<Event>& events() const { return events_; }
+  std::size_t queued() const { return queue_.size(); }
+  /// Steps since the last command was applied (since the start if none was).
+  std::uint64_t stepsSinceCommand() const { return sim_.steps() - last_command_step_; }
+
+  static constexpr std::size_t kQueueCapacity = 10000;
+
+ private:
+  void apply(const TiltCommand& command);
+  std::uint64_t stepsOf(double seconds) const;
+
+  SessionSettings settings_;
+  Simulation sim_;
+  std::deque<TiltCommand> queue_;
+  std::vector<Event> events_;
+  bool paused_ = false;
+  bool commanded_ = false;  // a command was applied since the start or the last reset
+  std::uint64_t last_command_step_ = 0;
+  bool driving_rates_ = false;
+  bool levelled_ = false;
+  bool finished_ = false;
+  std::uint64_t finished_step_ = 0;
+};
+
+}  // namespace marble_maze

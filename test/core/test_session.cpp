@@ -1,0 +1,161 @@
+// The session: commands at their step, timed actions counted in steps, place, load, new physics.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "marble_maze/session.h"
+#include "scenes.h"
+
+namespace marble_maze {
+namespace {
+
+using test::placed;
+
+constexpr double kRadius = 0.006;
+
+Scene room(Params p = Params()) {
+  p.tilt_rate_limit = 0;
+  p.tilt_response_time = 0;  // the board takes a target at once: steps are easy to tell apart
+  return test::flatFloor(20, 20, 0.01, placed(p, {0, 0, kRadius}));
+}
+
+TEST(Session, ACommandTakesEffectAtItsStep) {
+  Session s(room());
+  s.command({100, TiltCommand::Kind::Angles, 0.05, -0.02});
+  s.run(100);
+  EXPECT_EQ(s.simulation().board().roll(), 0.0);  // not before step 100
+  s.run(1);
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.05);
+  EXPECT_DOUBLE_EQ(s.simulation().board().pitch(), -0.02);
+  EXPECT_EQ(s.stepsSinceCommand(), 1u);
+}
+
+TEST(Session, TheSameCallsGiveBitIdenticalStates) {
+  const auto play = [] {
+    Session s(room());
+    s.command({10, TiltCommand::Kind::Angles, 0.1, 0.05});
+    s.command({300, TiltCommand::Kind::Rates, -0.2, 0.3});
+    s.run(500);
+    s.place({0.02, -0.03, 0.01}, {0.1, 0, 0.2}, {0, 3, 0});
+    s.run(700);
+    return s.simulation().state();
+  };
+  const SimulationState a = play(), b = play();
+  EXPECT_EQ(a.marble.position, b.marble.position);  // exactly
+  EXPECT_EQ(a.marble.velocity, b.marble.velocity);
+  EXPECT_EQ(a.marble.angular_velocity, b.marble.angular_velocity);
+  EXPECT_EQ(a.board.roll(), b.board.roll());
+  EXPECT_EQ(a.steps, b.steps);
+}
+
+TEST(Session, TheTiltTimeoutLevelsTheBoardAtItsStep) {
+  SessionSettings settings;
+  settings.tilt_timeout = 0.5;
+  Session s(room(), settings);
+  s.command({0, TiltCommand::Kind::Angles, 0.05, 0.05});
+  s.run(500);  // the command at step 0, then 500 steps: due at step 500, not yet taken
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.05);
+  s.run(1);
+  EXPECT_EQ(s.simulation().board().roll(), 0.0);
+}
+
+TEST(Session, RateCommandsRunOutAfterTheRateTimeoutButTargetsHold) {
+  Session s(room());  // rate_timeout 1 s by default
+  s.command({0, TiltCommand::Kind::Rates, 0.1, 0});
+  s.run(1000);
+  const double roll = s.simulation().board().roll();
+  EXPECT_NEAR(roll, 0.1, 1e-12);  // 1 s at 0.1 rad/s, then stopped
+  s.run(1000);
+  EXPECT_EQ(s.simulation().board().roll(), roll);
+  s.command({s.steps(), TiltCommand::Kind::Angles, 0.02, 0});
+  s.run(3000);
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.02);
+}
+
+TEST(Session, AutoResetPutsTheMarbleBackAtItsStep) {
+  Scene scene = room();
+  for (int j : {9, 10})
+    for (int i : {9, 10}) scene.maze.setSolid({i, j, 0}, false);  // a 2 cm hole under the start
+  SessionSettings settings;
+  settings.auto_reset = 0.2;
+  Session s(scene, settings);
+  std::uint64_t fell = 0;
+  while (fell == 0 && s.steps() < 2000) {
+    s.run(1);
+    if (s.simulation().marble().phase == MarblePhase::InHole) fell = s.steps();
+  }
+  ASSERT_GT(fell, 0u);
+  s.run(199);
+  EXPECT_EQ(s.simulation().marble().phase, MarblePhase::InHole);
+  s.run(1);
+  EXPECT_EQ(s.simulation().marble().phase, MarblePhase::Free);
+}
+
+TEST(Session, PlaceRefusesATileOrOffTheBoardAndChangesNothing) {
+  Session s(room());
+  const Vec3 before = s.simulation().marble().position;
+  try {
+    s.place({0, 0, 0.001}, Vec3::Zero(), Vec3::Zero());  // sunk into the floor
+    FAIL() << "placed inside the floor";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("inside tile"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(s.place({0.5, 0, kRadius}, Vec3::Zero(), Vec3::Zero()), std::invalid_argument);
+  EXPECT_EQ(s.simulation().marble().position, before);
+  s.place({0.03, 0.02, 0.02}, {0.1, 0, 0}, Vec3::Zero());
+  EXPECT_NEAR(s.simulation().marbleInBoard().x(), 0.03, 1e-15);
+}
+
+TEST(Session, LoadKeepsTimeGoingAndABadSceneChangesNothing) {
+  Session s(room());
+  s.run(250);
+  Scene other = test::flatFloor(5, 5, 0.02, placed(Params(), {0, 0, kRadius}));
+  s.load(other);
+  EXPECT_EQ(s.steps(), 250u);
+  EXPECT_EQ(s.simulation().maze().size().x(), 5);
+  Scene bad = room();
+  bad.params.bounce_threshold_auto = false;
+  bad.params.bounce_threshold = 0;
+  bad.params.integrator = IntegratorKind::SemiImplicitEuler;
+  EXPECT_THROW(s.load(bad), ParamError);
+  EXPECT_EQ(s.simulation().maze().size().x(), 5);
+}
+
+TEST(Session, NewRestitutionActsOnTheNextBounceAsEquationOneSays) {
+  // A marble dropped from 2 cm bounces at e = 0.5; before it lands the restitution becomes 0.8:
+  // it leaves at 0.8 times its approach.
+  Params p;
+  p.model = Model::Smooth;
+  p.restitution = 0.5;
+  Session s(test::flatFloor(20, 20, 0.01, placed(p, {0, 0, kRadius + 0.02})));
+  s.run(10);
+  p = s.simulation().params();
+  p.restitution = 0.8;
+  s.setParams(p);
+  while (s.events().empty() && s.steps() < 1000) s.run(1);
+  ASSERT_EQ(s.events().size(), 1u);
+  const double approach = s.events()[0].speed;
+  EXPECT_NEAR(approach, std::sqrt(2 * 9.81 * 0.02), 1e-9);
+  // The state is just after the bounce, within the step: v_z = 0.8 approach - g (the rest).
+  const double vz = s.simulation().marble().velocity.z();
+  EXPECT_GT(vz, 0.8 * approach - 9.81 * 0.001 - 1e-12);
+  EXPECT_LT(vz, 0.8 * approach + 1e-12);
+  Params wrong = p;
+  wrong.restitution = -1;
+  wrong.step = 0;
+  EXPECT_THROW(s.setParams(wrong), ParamError);
+  EXPECT_DOUBLE_EQ(s.simulation().params().restitution, 0.8);
+}
+
+TEST(Session, AFullQueueDropsTheCommandForTheLatestStep) {
+  Session s(room());
+  for (std::size_t i = 0; i < Session::kQueueCapacity; ++i)
+    ASSERT_TRUE(s.command({1000 + i, TiltCommand::Kind::Angles, 0, 0}));
+  EXPECT_FALSE(s.command({5, TiltCommand::Kind::Angles, 0.1, 0}));
+  EXPECT_EQ(s.queued(), Session::kQueueCapacity);
+  s.run(6);
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.1);  // the early one was kept
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -1,404 +1,365 @@
 #include "maze_node.h"
 
-#include <tf2_eigen/tf2_eigen.h>
-#include <visualization_msgs/MarkerArray.h>
-
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <set>
 #include <sstream>
-
-#include "marble_maze/MarbleState.h"
-#include "marble_maze/MazeEvent.h"
-#include "maze_description.h"
-#include "maze_markers.h"
+#include <stdexcept>
 
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
 namespace {
 
-// At most this much simulated time (or five timer periods, if longer) is caught up in one
-// callback; a longer stall (a suspended process, a jump of the clock) is skipped with a warning
-// rather than replayed in a burst.
+// Following ROS time, at most this much simulated time (or five timer periods, if longer) is
+// caught up in one callback; a longer stall (a suspended process, a jump of the clock) is skipped
+// with a warning rather than replayed in a burst.
 constexpr double kMaxCatchUp = 1.0;  // s
+// With ~clock, each run of steps lasts at most this long, so that commands and services are
+// answered in between.
+constexpr double kFreeRunSlice = 0.005;  // s of wall time
+constexpr std::uint32_t kMostStepsPerCall = 10000000;
 
-/// A parameter's value as the text the core's parameter table reads ("0.7", "rolling",
-/// "0.1,0,0.006"); throws naming the parameter when it has no such form.
-std::string asText(XmlRpc::XmlRpcValue value, const std::string& name) {
+std::string text(double value) {
   std::ostringstream out;
-  out << std::setprecision(17);
-  switch (value.getType()) {
-    case XmlRpc::XmlRpcValue::TypeDouble:
-      out << static_cast<double>(value);
-      return out.str();
-    case XmlRpc::XmlRpcValue::TypeInt:
-      return std::to_string(static_cast<int>(value));
-    case XmlRpc::XmlRpcValue::TypeBoolean:
-      return static_cast<bool>(value) ? "true" : "false";
-    case XmlRpc::XmlRpcValue::TypeString:
-      return static_cast<std::string>(value);
-    case XmlRpc::XmlRpcValue::TypeArray:
-      for (int i = 0; i < value.size(); ++i)
-        out << (i ? "," : "") << asText(value[i], name + "[" + std::to_string(i) + "]");
-      return out.str();
-    default:
-      throw std::runtime_error(name + ": expected a number, a string or a list of numbers");
-  }
-}
-
-double readRate(const ros::NodeHandle& pnh, const std::string& key, double fallback, double min,
-                double max) {
-  XmlRpc::XmlRpcValue value;
-  if (!pnh.getParam(key, value)) return fallback;
-  const std::string name = pnh.resolveName(key);
-  double number = 0;
-  if (!mm::parseFiniteNumber(asText(value, name), &number))
-    throw std::runtime_error(name + ": expected a number");
-  if (number < min || number > max) {
-    std::ostringstream msg;
-    msg << name << ": " << number << " is out of range [" << min << ", " << max << "]";
-    throw std::runtime_error(msg.str());
-  }
-  return number;
-}
-
-std::string readText(const ros::NodeHandle& pnh, const std::string& key,
-                     const std::string& fallback) {
-  XmlRpc::XmlRpcValue value;
-  if (!pnh.getParam(key, value)) return fallback;
-  if (value.getType() != XmlRpc::XmlRpcValue::TypeString)
-    throw std::runtime_error(pnh.resolveName(key) + ": expected a string");
-  return static_cast<std::string>(value);
+  out << std::setprecision(17) << value;
+  return out.str();
 }
 
 }  // namespace
 
-MazeNode::Settings MazeNode::readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
-  // Every private parameter must be one we know: a misspelt one would otherwise do nothing.
-  const std::set<std::string> node_keys = {"maze",        "update_rate",  "publish_rate",
-                                           "marker_rate", "tilt_timeout", "auto_reset",
-                                           "world_frame", "board_frame",  "marble_frame"};
-  std::set<std::string> known = node_keys;
-  for (const mm::ParamInfo& info : mm::paramInfos()) known.insert(info.key);
-  std::vector<std::string> names;
-  ros::param::getParamNames(names);
-  const std::string prefix = pnh.getNamespace() + "/";
-  for (const std::string& name : names) {
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string key =
-        name.substr(prefix.size(), name.find('/', prefix.size()) - prefix.size());
-    if (!known.count(key)) throw std::runtime_error(name + ": unknown parameter");
-  }
-
-  Settings s;
-  s.maze = readText(pnh, "maze", s.maze);
-  s.update_rate = readRate(pnh, "update_rate", s.update_rate, 1.0, 10000.0);
-  s.publish_rate = readRate(pnh, "publish_rate", s.publish_rate, 0.1, 1000.0);
-  s.marker_rate = readRate(pnh, "marker_rate", s.marker_rate, 0.1, 1000.0);
-  s.tilt_timeout = readRate(pnh, "tilt_timeout", s.tilt_timeout, 0.0, 1e6);
-  s.auto_reset = readRate(pnh, "auto_reset", s.auto_reset, 0.0, 1e6);
-  s.world_frame = readText(pnh, "world_frame", s.world_frame);
-  s.board_frame = readText(pnh, "board_frame", s.board_frame);
-  s.marble_frame = readText(pnh, "marble_frame", s.marble_frame);
-
-  try {
-    *scene = mm::loadScene(s.maze);
-  } catch (const mm::MazeFileError& e) {
-    throw std::runtime_error(pnh.resolveName("maze") + ": " + e.what());
-  }
-  // The core's keys, as the runner's --set takes them.
-  for (const mm::ParamInfo& info : mm::paramInfos()) {
-    XmlRpc::XmlRpcValue value;
-    if (!pnh.getParam(info.key, value)) continue;
-    try {
-      mm::setParam(scene->params, info.key, asText(value, pnh.resolveName(info.key)));
-    } catch (const mm::ParamError& e) {
-      throw std::runtime_error(prefix + e.what());
-    }
-  }
-  try {
-    mm::validate(scene->params);
-  } catch (const mm::ParamError& e) {
-    throw std::runtime_error(prefix + e.what());
-  }
-  return s;
-}
-
-MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   mm::Scene scene;
   settings_ = readSettings(pnh, &scene);
-  sim_ = std::make_unique<mm::Simulation>(scene);
+  session_ = std::make_unique<mm::Session>(scene, settings_.session);
+  started_ = ros::WallTime::now();
 
-  state_pub_ = nh.advertise<marble_maze::MarbleState>("marble_state", 10);
-  event_pub_ = nh.advertise<marble_maze::MazeEvent>("events", 100);
-  maze_pub_ = nh.advertise<marble_maze::MazeDescription>("maze", 1, true);
-  maze_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("maze_markers", 1, true);
-  live_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("live_markers", 1);
-  marble_marker_pub_ = nh.advertise<visualization_msgs::Marker>("marble_marker", 10);
-  const auto hints = ros::TransportHints().tcpNoDelay();
-  tilt_sub_ = nh.subscribe("tilt", 100, &MazeNode::onTilt, this, hints);
-  tilt_rate_sub_ = nh.subscribe("tilt_rate", 100, &MazeNode::onTiltRate, this, hints);
-  reset_srv_ = nh.advertiseService("reset", &MazeNode::onReset, this);
-  pause_srv_ = nh.advertiseService("pause", &MazeNode::onPause, this);
-  resume_srv_ = nh.advertiseService("resume", &MazeNode::onResume, this);
-  maze_pub_.publish(describe({sim_->maze(), sim_->params()}, settings_.board_frame));
-  maze_markers_pub_.publish(mazeMarkers(sim_->maze(), settings_.board_frame));
-  timer_ = nh.createTimer(ros::Duration(1.0 / settings_.update_rate), &MazeNode::onTimer, this);
+  out_ = std::make_unique<StateOutput>(nh, settings_);
+  input_ = std::make_unique<TiltInput>(
+      nh,
+      [this](const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll, double pitch) {
+        onCommand(stamp, kind, roll, pitch);
+      },
+      [this]() -> const mm::Params& { return session_->simulation().params(); });
+  SimControl control;
+  control.reset = [this] { return reset(); };
+  control.pause = [this] { return pause(); };
+  control.resume = [this] { return resume(); };
+  control.step = [this](std::uint32_t n, marble_maze::MarbleState* after) {
+    return stepPaused(n, after);
+  };
+  control.place = [this](const mm::Vec3& p, const mm::Vec3& v, const mm::Vec3& w) {
+    return place(p, v, w);
+  };
+  control.load = [this](const std::string& maze) { return load(maze); };
+  services_ = std::make_unique<SimServices>(nh, control);
+  mm::ParamInfo factor{"real_time_factor",
+                       "",
+                       "with ~clock: times real time to run at, 0 = as fast as it can",
+                       mm::ParamInfo::Type::Number,
+                       0,
+                       1e6,
+                       {},
+                       true};
+  reconfigure_ = std::make_unique<Reconfigure>(
+      pnh, std::vector<mm::ParamInfo>{factor},
+      [this](const Reconfigure::Changes& changes) { return reconfigure(changes); },
+      [this](const std::string& key) { return valueOf(key); });
+  health_ = std::make_unique<Health>(nh);
 
-  const mm::Params& p = sim_->params();
+  out_->publishScene(session_->simulation(), false);
+  writeBack(pnh_, settings_, session_->simulation().params());
+  const mm::Params& p = session_->simulation().params();
+  const char* mode = settings_.lockstep > 0 ? "lockstep"
+                     : settings_.own_clock  ? "own clock"
+                                            : "ROS time";
   ROS_INFO(
       "marble_maze: maze '%s' (%d x %d x %d tiles), model %s, integrator %s, step %g s x %d "
-      "substeps",
-      sim_->maze().name().c_str(), sim_->maze().size().x(), sim_->maze().size().y(),
-      sim_->maze().size().z(), mm::getParam(p, "model").c_str(),
-      mm::getParam(p, "integrator").c_str(), p.step, p.substeps);
-}
+      "substeps; time: %s",
+      session_->simulation().maze().name().c_str(), session_->simulation().maze().size().x(),
+      session_->simulation().maze().size().y(), session_->simulation().maze().size().z(),
+      mm::getParam(p, "model").c_str(), mm::getParam(p, "integrator").c_str(), p.step, p.substeps,
+      mode);
 
-ros::Time MazeNode::stampOfStep(std::uint64_t step) const {
-  return stampOfTime(static_cast<double>(step) * sim_->params().step);
-}
-
-ros::Time MazeNode::stampOfTime(double sim_time) const {
-  return origin_ +
-         ros::Duration(sim_time - static_cast<double>(anchor_step_) * sim_->params().step);
-}
-
-void MazeNode::anchor(const ros::Time& now) {
-  origin_ = now;
-  anchor_step_ = sim_->steps();
-}
-
-void MazeNode::onTilt(const marble_maze::BoardTilt::ConstPtr& msg) {
-  const char* topic = tilt_sub_.getTopic().c_str();
-  if (!std::isfinite(msg->roll) || !std::isfinite(msg->pitch)) {
-    ROS_WARN_THROTTLE(1.0, "%s: refused roll=%g pitch=%g (not finite); the board keeps its tilt",
-                      topic, msg->roll, msg->pitch);
-    return;
+  if (settings_.own_clock || settings_.lockstep > 0) {
+    clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    clock_.anchor(ros::Time(0), 0);  // ROS time is simulated time
+    publishNow();
   }
-  const double limit = sim_->params().tilt_limit;
-  if (std::abs(msg->roll) > limit || std::abs(msg->pitch) > limit)
-    ROS_WARN_THROTTLE(1.0, "%s: roll=%g pitch=%g rad beyond tilt_limit %g rad; clamped", topic,
-                      msg->roll, msg->pitch, limit);
-  queue(msg->header, {0, TiltCommand::Kind::Angles, msg->roll, msg->pitch});
-}
-
-void MazeNode::onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg) {
-  const char* topic = tilt_rate_sub_.getTopic().c_str();
-  if (!std::isfinite(msg->roll_rate) || !std::isfinite(msg->pitch_rate)) {
-    ROS_WARN_THROTTLE(1.0, "%s: refused roll_rate=%g pitch_rate=%g (not finite); nothing changed",
-                      topic, msg->roll_rate, msg->pitch_rate);
-    return;
+  if (settings_.own_clock) {
+    free_run_start_ = ros::WallTime::now();
+    free_run_ = nh.createWallTimer(ros::WallDuration(0.001), &MazeNode::onFreeRun, this);
+  } else if (settings_.lockstep <= 0) {
+    timer_ = nh.createTimer(ros::Duration(1.0 / settings_.update_rate), &MazeNode::onTimer, this);
   }
-  const double limit = sim_->params().tilt_rate_limit;
-  if (limit > 0 && (std::abs(msg->roll_rate) > limit || std::abs(msg->pitch_rate) > limit))
-    ROS_WARN_THROTTLE(1.0,
-                      "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
-                      topic, msg->roll_rate, msg->pitch_rate, limit);
-  queue(msg->header, {0, TiltCommand::Kind::Rates, msg->roll_rate, msg->pitch_rate});
 }
 
-void MazeNode::queue(const std_msgs::Header& header, TiltCommand command) {
+// --- Time ----------------------------------------------------------------------------------------
+
+ros::Time MazeNode::stampNow() const {
+  return clock_.stampOf(simTime());
+}
+
+void MazeNode::publishClock() {
+  if (!clock_pub_) return;
+  rosgraph_msgs::Clock msg;
+  msg.clock = stampNow();
+  clock_pub_.publish(msg);
+}
+
+void MazeNode::onTimer(const ros::TimerEvent&) {
   const ros::Time now = ros::Time::now();
-  command.stamp = (header.stamp.isZero() ? now : header.stamp).toSec();
-  last_command_ = now;
-  levelled_after_timeout_ = false;
-  if (!commands_.push(command))
+  if (now.isZero()) {  // a simulated clock that has not started
+    if (!said_waiting_ && (ros::WallTime::now() - started_).toSec() > 2.0) {
+      ROS_INFO("marble_maze: waiting for /clock (/use_sim_time is true and no clock has come)");
+      said_waiting_ = true;
+    }
+    return;
+  }
+  if (!clock_.anchored()) {  // the first tick of a running clock
+    clock_.anchor(now, simTime());
+    last_now_ = now;
+    publishNow();
+    return;
+  }
+  if (now < last_now_) {
+    ROS_WARN("ROS time went back by %.3f s (a bag looping? a restarted clock?); following it",
+             (last_now_ - now).toSec());
+    clock_.anchor(now, simTime());
+    out_->clearStamps();
+    last_state_stamp_ = last_marker_stamp_ = ros::Time();
+    last_now_ = now;
+    publishNow();
+    return;
+  }
+  last_now_ = now;
+  if (session_->paused()) {
+    // The frozen state goes on being published, so that tf does not go stale.
+    if (last_frozen_.isZero() || (now - last_frozen_).toSec() >= 1.0 / settings_.publish_rate) {
+      last_frozen_ = now;
+      publishDue(true);
+    }
+    updateHealth();
+    return;
+  }
+  auto due = static_cast<std::int64_t>(std::floor((clock_.due(now) - simTime()) / step() + 1e-9));
+  const auto most =
+      static_cast<std::int64_t>(std::max(kMaxCatchUp, 5.0 / settings_.update_rate) / step());
+  if (due > most) {
+    ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
+                      (due - most) * step());
+    skipped_steps_ += due - most;
+    clock_.anchor(now, simTime() + most * step());
+    due = most;
+  }
+  if (due > 0) runSteps(static_cast<std::uint64_t>(due));
+  updateHealth();
+}
+
+void MazeNode::onFreeRun(const ros::WallTimerEvent&) {
+  if (session_->paused()) {
+    updateHealth();
+    return;
+  }
+  const ros::WallTime begin = ros::WallTime::now();
+  if (settings_.real_time_factor > 0) {
+    // As far as the factor allows by now, in slices so that callbacks are answered.
+    const double target =
+        free_run_start_sim_ + settings_.real_time_factor * (begin - free_run_start_).toSec();
+    auto due = static_cast<std::int64_t>(std::floor((target - simTime()) / step() + 1e-9));
+    const auto most = static_cast<std::int64_t>(kMaxCatchUp / step());
+    if (due > most) {
+      skipped_steps_ += due - most;  // cannot keep up: say so, and aim from here
+      free_run_start_ = begin;
+      free_run_start_sim_ = simTime();
+      due = most;
+    }
+    if (due > 0) runSteps(static_cast<std::uint64_t>(due));
+  } else {
+    while ((ros::WallTime::now() - begin).toSec() < kFreeRunSlice) runSteps(100);
+  }
+  publishClock();
+  updateHealth();
+}
+
+void MazeNode::runSteps(std::uint64_t count) {
+  for (std::uint64_t i = 0; i < count; ++i) {
+    session_->run(1);
+    for (const mm::Event& e : session_->events()) out_->publishEvent(e, clock_.stampOf(e.time));
+    publishDue(false);
+  }
+}
+
+void MazeNode::publishDue(bool force) {
+  // States and markers at their rates of simulated time, whatever the mode, each stamp later
+  // than the one before: a state asked for at an instant already published (a reset just after
+  // a step) goes out with the next step instead. Paused on ROS time, the frozen state is stamped
+  // with the ROS time that passes.
+  const double t = simTime(), half_step = 0.5 * step();
+  ros::Time stamp = stampNow();
+  if (session_->paused() && !settings_.own_clock && settings_.lockstep <= 0)
+    stamp = std::max(ros::Time::now(), stamp);
+  if (force || state_pending_ || t - last_state_time_ >= 1.0 / settings_.publish_rate - half_step) {
+    state_pending_ = stamp <= last_state_stamp_;
+    if (!state_pending_) {
+      last_state_time_ = t;
+      last_state_stamp_ = stamp;
+      out_->publishState(session_->simulation(), stamp);
+    }
+  }
+  if ((force || t - last_marker_time_ >= 1.0 / settings_.marker_rate - half_step) &&
+      stamp > last_marker_stamp_) {
+    last_marker_time_ = t;
+    last_marker_stamp_ = stamp;
+    out_->publishMarkers(session_->simulation(), stamp);
+  }
+}
+
+void MazeNode::publishNow() {
+  publishDue(true);
+  publishClock();
+}
+
+void MazeNode::updateHealth() {
+  HealthFigures f;
+  f.simulated_time = simTime();
+  f.aimed_factor = settings_.own_clock      ? settings_.real_time_factor
+                   : settings_.lockstep > 0 ? 0
+                                            : 1;
+  f.skipped_steps = skipped_steps_;
+  f.commands = input_->received();
+  f.since_command = input_->last().isZero() ? -1 : (ros::Time::now() - input_->last()).toSec();
+  f.queued = session_->queued();
+  f.paused = session_->paused();
+  f.lockstep = settings_.lockstep > 0;
+  health_->set(f);
+}
+
+// --- Inputs
+// ----------------------------------------------------------------------------------------
+
+void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll,
+                         double pitch) {
+  const std::uint64_t now = session_->steps();
+  if (settings_.lockstep > 0) {
+    // A gym-like loop over plain topics: the command acts at once, for one control period.
+    session_->command({now, kind, roll, pitch});
+    runSteps(std::max<std::uint64_t>(1, std::llround(settings_.lockstep / step())));
+    publishNow();
+    updateHealth();
+    return;
+  }
+  const std::uint64_t at = clock_.anchored() ? clock_.stepAt(stamp, now, simTime(), step()) : now;
+  if (!session_->command({at, kind, roll, pitch}))
     ROS_WARN_THROTTLE(1.0,
                       "tilt commands stamped far ahead fill the queue; dropped the one furthest "
                       "ahead");
 }
 
-void MazeNode::apply(const TiltCommand& command) {
-  if (command.kind == TiltCommand::Kind::Angles)
-    sim_->setTargetTilt(command.roll, command.pitch);
-  else
-    sim_->setTiltRate(command.roll, command.pitch);
+// --- Services
+// --------------------------------------------------------------------------------------
+
+std::string MazeNode::reset() {
+  session_->reset();
+  publishNow();
+  return "";
 }
 
-void MazeNode::onTimer(const ros::TimerEvent&) {
-  const ros::Time now = ros::Time::now();
-  if (now.isZero()) return;  // a simulated clock that has not started
-  if (origin_.isZero()) {    // the first tick of a running clock
-    anchor(now);
-    publish(true);
-    return;
-  }
-  const ros::Time sim_now = stampOfStep(sim_->steps());
-  // Steps are only ever taken up to now (give or take the rounding of a stamp to nanoseconds):
-  // a clock behind the last step went back.
-  if (now + ros::Duration(0.5 * sim_->params().step) < sim_now) {
-    ROS_WARN("ROS time went back by %.3f s (a bag looping? a restarted clock?); following it",
-             (sim_now - now).toSec());
-    anchor(now);
-    commands_.clear();
-    if (!last_command_.isZero()) last_command_ = now;
-    if (!finished_at_.isZero()) finished_at_ = now;
-    last_state_stamp_ = last_marker_stamp_ = ros::Time();
-    publish(true);
-    return;
-  }
-  if (paused_) return;
-  if (settings_.tilt_timeout > 0 && !levelled_after_timeout_ && !last_command_.isZero() &&
-      (now - last_command_).toSec() > settings_.tilt_timeout) {
-    ROS_INFO("no tilt command for %g s: levelling the board", settings_.tilt_timeout);
-    sim_->setTargetTilt(0, 0);
-    levelled_after_timeout_ = true;
-  }
-  stepUntil(now);
-  publish(false);
+std::string MazeNode::pause() {
+  session_->pause();
+  last_frozen_ = ros::Time();
+  return "";
 }
 
-void MazeNode::stepUntil(const ros::Time& now) {
-  const double step = sim_->params().step;
-  const auto stepped = static_cast<std::int64_t>(sim_->steps() - anchor_step_);
-  auto due = static_cast<std::int64_t>(std::floor((now - origin_).toSec() / step + 1e-9)) - stepped;
-  const double most_time = std::max(kMaxCatchUp, 5.0 / settings_.update_rate);
-  const auto most = static_cast<std::int64_t>(most_time / step);
-  if (due > most) {
-    ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
-                      (due - most) * step);
-    origin_ += ros::Duration((due - most) * step);
-    due = most;
+std::string MazeNode::resume() {
+  if (!session_->paused()) return "";
+  session_->resume();
+  // The simulation takes up where it stopped: the paused time is not simulated. Steps taken
+  // while paused put it ahead of ROS time, which then catches up.
+  if (settings_.own_clock) {
+    free_run_start_ = ros::WallTime::now();
+    free_run_start_sim_ = simTime();
+  } else if (settings_.lockstep <= 0 && clock_.anchored()) {
+    clock_.anchor(std::max(ros::Time::now(), stampNow()), simTime());
   }
-  for (std::int64_t i = 0; i < due; ++i) {
-    commands_.applyDue(stampOfStep(sim_->steps()).toSec(),
-                       [this](const TiltCommand& c) { apply(c); });
-    sim_->step();
-    publishEvents();
-  }
-  if (sim_->marble().phase == mm::MarblePhase::Free) return;
-  if (finished_at_.isZero()) finished_at_ = now;
-  if (settings_.auto_reset > 0 && (now - finished_at_).toSec() >= settings_.auto_reset) {
-    sim_->reset();
-    finished_at_ = ros::Time();
-  }
+  return "";
 }
 
-void MazeNode::publishEvents() {
-  for (const mm::Event& e : sim_->events()) {
-    marble_maze::MazeEvent msg;
-    msg.header.stamp = stampOfTime(e.time);
-    msg.header.frame_id = settings_.board_frame;
-    switch (e.kind) {
-      case mm::EventKind::Collision:
-        msg.kind = marble_maze::MazeEvent::COLLISION;
-        break;
-      case mm::EventKind::Hole:
-        msg.kind = marble_maze::MazeEvent::HOLE;
-        break;
-      case mm::EventKind::Goal:
-        msg.kind = marble_maze::MazeEvent::GOAL;
-        break;
-      case mm::EventKind::OffBoard:
-        msg.kind = marble_maze::MazeEvent::OFF_BOARD;
-        break;
+std::string MazeNode::stepPaused(std::uint32_t steps, marble_maze::MarbleState* after) {
+  if (!session_->paused()) return "steps: only while paused (the simulation runs): call pause";
+  if (steps > kMostStepsPerCall)
+    return "steps: at most " + std::to_string(kMostStepsPerCall) + " a call, got " +
+           std::to_string(steps);
+  if (settings_.lockstep <= 0 && !settings_.own_clock)
+    clock_.anchor(std::max(ros::Time::now(), stampNow()), simTime());
+  runSteps(steps);
+  publishNow();
+  *after = out_->stateOf(session_->simulation(), stampNow());
+  return "";
+}
+
+std::string MazeNode::place(const mm::Vec3& position, const mm::Vec3& velocity,
+                            const mm::Vec3& spin) {
+  try {
+    session_->place(position, velocity, spin);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  publishNow();
+  return "";
+}
+
+std::string MazeNode::load(const std::string& maze) {
+  try {
+    session_->load(sceneFor(maze, settings_));
+  } catch (const mm::MazeFileError& e) {
+    return e.what();
+  } catch (const mm::ParamError& e) {
+    return e.what();
+  }
+  settings_.maze = maze;
+  out_->publishScene(session_->simulation(), true);
+  reconfigure_->publishUpdate();
+  writeBack(pnh_, settings_, session_->simulation().params());
+  publishNow();
+  ROS_INFO("marble_maze: loaded maze '%s'", session_->simulation().maze().name().c_str());
+  return "";
+}
+
+std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
+  mm::Params params = session_->simulation().params();
+  double factor = settings_.real_time_factor;
+  try {
+    for (const auto& [key, value] : changes) {
+      if (key == "real_time_factor") {
+        if (!mm::parseFiniteNumber(value, &factor) || factor < 0 || factor > 1e6)
+          return "real_time_factor: expected 0..1e6, got '" + value + "'";
+      } else {
+        mm::setParam(params, key, value);
+      }
     }
-    msg.tile_x = e.tile.x();
-    msg.tile_y = e.tile.y();
-    msg.tile_z = e.tile.z();
-    msg.impact_speed = e.speed;
-    event_pub_.publish(msg);
-    if (e.kind != mm::EventKind::Collision)
-      ROS_INFO("t=%.3f s: %s at tile (%d, %d, %d)", e.time, mm::toString(e.kind).c_str(),
-               e.tile.x(), e.tile.y(), e.tile.z());
+    mm::validate(params);
+    const double per_second = 1.0 / params.step;
+    if (settings_.publish_rate > per_second * (1 + 1e-9) ||
+        settings_.marker_rate > per_second * (1 + 1e-9))
+      return "step: " + text(params.step) + " s makes fewer steps a second than ~publish_rate or " +
+             "~marker_rate asks for";
+    session_->setParams(params);
+  } catch (const mm::ParamError& e) {
+    return e.what();
   }
+  if (factor != settings_.real_time_factor) {
+    settings_.real_time_factor = factor;
+    free_run_start_ = ros::WallTime::now();
+    free_run_start_sim_ = simTime();
+  }
+  writeBack(pnh_, settings_, session_->simulation().params());
+  return "";
 }
 
-void MazeNode::publish(bool force) {
-  const ros::Time stamp = stampOfStep(sim_->steps());
-  // Each frame's stamps strictly increase: only a new step is published.
-  const bool new_step = stamp > last_state_stamp_ || (force && last_state_stamp_.isZero());
-  if (new_step && (force || (stamp - last_state_stamp_).toSec() >=
-                                1.0 / settings_.publish_rate - 0.5 * sim_->params().step)) {
-    last_state_stamp_ = stamp;
-    const mm::Marble& m = sim_->marble();
-    const mm::Mat3& board = sim_->board().rotation();
-    const mm::Vec3 in_board = sim_->marbleInBoard();
-
-    Eigen::Isometry3d world_to_board = Eigen::Isometry3d::Identity();
-    world_to_board.linear() = board;
-    geometry_msgs::TransformStamped board_tf = tf2::eigenToTransform(world_to_board);
-    board_tf.header.stamp = stamp;
-    board_tf.header.frame_id = settings_.world_frame;
-    board_tf.child_frame_id = settings_.board_frame;
-    Eigen::Isometry3d board_to_marble = Eigen::Isometry3d::Identity();
-    board_to_marble.translation() = in_board;
-    board_to_marble.linear() = board.transpose() * m.orientation.toRotationMatrix();
-    geometry_msgs::TransformStamped marble_tf = tf2::eigenToTransform(board_to_marble);
-    marble_tf.header.stamp = stamp;
-    marble_tf.header.frame_id = settings_.board_frame;
-    marble_tf.child_frame_id = settings_.marble_frame;
-    tf_.sendTransform({board_tf, marble_tf});
-
-    marble_maze::MarbleState state;
-    state.header.stamp = stamp;
-    state.header.frame_id = settings_.world_frame;
-    state.position = tf2::toMsg(m.position);
-    tf2::toMsg(m.velocity, state.velocity);
-    tf2::toMsg(m.angular_velocity, state.angular_velocity);
-    state.position_in_board = tf2::toMsg(in_board);
-    state.roll = sim_->board().roll();
-    state.pitch = sim_->board().pitch();
-    state.contacts = static_cast<std::uint8_t>(std::min(m.contacts, 255));
-    state.in_hole = m.phase == mm::MarblePhase::InHole;
-    state.at_goal = m.phase == mm::MarblePhase::AtGoal;
-    state.off_board = m.phase == mm::MarblePhase::OffBoard;
-    state_pub_.publish(state);
-  }
-  if (stamp > last_marker_stamp_ &&
-      (force || (stamp - last_marker_stamp_).toSec() >=
-                    1.0 / settings_.marker_rate - 0.5 * sim_->params().step)) {
-    last_marker_stamp_ = stamp;
-    visualization_msgs::Marker marble =
-        marbleMarker(sim_->params().marble_radius, settings_.marble_frame);
-    marble.header.stamp = stamp;
-    marble_marker_pub_.publish(marble);
-    // The trail: the last 3 s at the marker rate; a jump (a reset, a place) starts a new one.
-    const mm::Vec3 here = sim_->marbleInBoard();
-    if (!trail_.empty() && (trail_.back() - here).norm() > 0.05) trail_.clear();
-    trail_.push_back(here);
-    while (trail_.size() > 3 * settings_.marker_rate) trail_.pop_front();
-    visualization_msgs::MarkerArray live =
-        liveMarkers(sim_->maze(), {trail_.begin(), trail_.end()}, sim_->params().marble_radius,
-                    sim_->board().roll(), sim_->board().pitch(), settings_.board_frame);
-    for (auto& m : live.markers) m.header.stamp = stamp;
-    live_markers_pub_.publish(live);
-  }
-}
-
-bool MazeNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  sim_->reset();
-  commands_.clear();
-  finished_at_ = ros::Time();
-  res.success = true;
-  res.message = "marble back at the start, board at its initial tilt";
-  return true;
-}
-
-bool MazeNode::onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  if (!paused_) {
-    paused_ = true;
-    paused_at_ = ros::Time::now();
-  }
-  res.success = true;
-  res.message = "paused";
-  return true;
-}
-
-bool MazeNode::onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  if (paused_) {
-    paused_ = false;
-    // The simulation takes up where it stopped: the paused time is not simulated, nor does it
-    // count towards the tilt timeout or the auto reset.
-    const ros::Duration paused = ros::Time::now() - paused_at_;
-    origin_ += paused;
-    if (!last_command_.isZero()) last_command_ += paused;
-    if (!finished_at_.isZero()) finished_at_ += paused;
-  }
-  res.success = true;
-  res.message = "running";
-  return true;
+std::string MazeNode::valueOf(const std::string& key) const {
+  if (key == "real_time_factor") return text(settings_.real_time_factor);
+  return mm::getParam(session_->simulation().params(), key);
 }
 
 }  // namespace marble_maze_ros

@@ -1,19 +1,28 @@
-// marble_maze_node: the physics core behind ROS topics, services, parameters, tf and markers.
-// It translates; the physics is all in the core.
+// marble_maze_node: the core's session behind ROS topics, services, parameters, tf and markers.
+// It wires small units together (settings, inputs, outputs, services, reconfigure, health) and
+// keeps the one thing that is ROS's alone: how ROS time and the simulation's steps relate, in
+// one of three modes:
+//  - following ROS time (the default): the steps due are the ROS time elapsed (wall time, or
+//    /clock under /use_sim_time), checked at ~update_rate;
+//  - ~clock: the node owns /clock and runs as fast as it can (~real_time_factor 0) or at a
+//    multiple of real time;
+//  - ~lockstep: each tilt command advances one control period, then the state is published.
 #pragma once
 
 #include <ros/ros.h>
-#include <std_srvs/Trigger.h>
-#include <tf2_ros/transform_broadcaster.h>
+#include <rosgraph_msgs/Clock.h>
 
-#include <deque>
 #include <memory>
 #include <string>
 
-#include "command_queue.h"
-#include "marble_maze/BoardTilt.h"
-#include "marble_maze/BoardTiltRate.h"
-#include "marble_maze/simulation.h"
+#include "health.h"
+#include "marble_maze/session.h"
+#include "node_settings.h"
+#include "reconfigure.h"
+#include "sim_clock.h"
+#include "sim_services.h"
+#include "state_output.h"
+#include "tilt_input.h"
 
 namespace marble_maze_ros {
 
@@ -23,54 +32,54 @@ class MazeNode {
   MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh);
 
  private:
-  struct Settings {
-    std::string maze = "classic";
-    double update_rate = 200.0;  // Hz: how often ROS time is checked for steps due
-    double publish_rate = 50.0;  // Hz: marble_state and tf
-    double marker_rate = 10.0;   // Hz: marble_marker
-    double tilt_timeout = 0.0;   // s of ROS time without commands before the board levels; 0 off
-    double auto_reset = 0.0;     // s after the marble finishes before it is reset; 0 off
-    std::string world_frame = "world", board_frame = "board", marble_frame = "marble";
-  };
-  static Settings readSettings(const ros::NodeHandle& pnh, marble_maze::Scene* scene);
+  // Time.
+  void onTimer(const ros::TimerEvent&);        // following ROS time
+  void onFreeRun(const ros::WallTimerEvent&);  // ~clock
+  void runSteps(std::uint64_t count);
+  void publishDue(bool force);
+  void publishNow();
+  ros::Time stampNow() const;
+  double simTime() const { return session_->simulation().time(); }
+  double step() const { return session_->simulation().params().step; }
+  void publishClock();
+  void updateHealth();
 
-  void onTilt(const marble_maze::BoardTilt::ConstPtr& msg);
-  void onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg);
-  void queue(const std_msgs::Header& header, TiltCommand command);
-  void onTimer(const ros::TimerEvent&);
-  bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
-  bool onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
-  bool onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  // Inputs and services.
+  void onCommand(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind, double roll,
+                 double pitch);
+  std::string reset();
+  std::string pause();
+  std::string resume();
+  std::string stepPaused(std::uint32_t steps, marble_maze::MarbleState* after);
+  std::string place(const marble_maze::Vec3& position, const marble_maze::Vec3& velocity,
+                    const marble_maze::Vec3& spin);
+  std::string load(const std::string& maze);
+  std::string reconfigure(const Reconfigure::Changes& changes);
+  std::string valueOf(const std::string& key) const;
 
-  void stepUntil(const ros::Time& now);
-  void apply(const TiltCommand& command);
-  void publish(bool force);
-  void publishEvents();
-  ros::Time stampOfStep(std::uint64_t step) const;
-  ros::Time stampOfTime(double sim_time) const;
-  /// Ties the simulation's current step to ROS time `now`.
-  void anchor(const ros::Time& now);
-
-  Settings settings_;
-  std::unique_ptr<marble_maze::Simulation> sim_;
-  CommandQueue commands_;
-
-  ros::Time origin_;  // ROS time of step anchor_step_; zero until the clock runs
-  std::uint64_t anchor_step_ = 0;
-  ros::Time paused_at_;
-  bool paused_ = false;
-  ros::Time last_command_;
-  bool levelled_after_timeout_ = false;
-  ros::Time finished_at_;  // when the marble fell in or reached the goal
-  ros::Time last_state_stamp_, last_marker_stamp_;
-
-  ros::Subscriber tilt_sub_, tilt_rate_sub_;
-  ros::Publisher state_pub_, event_pub_, maze_pub_, maze_markers_pub_, marble_marker_pub_,
-      live_markers_pub_;
-  std::deque<marble_maze::Vec3> trail_;  // the marble's recent board-frame positions
-  ros::ServiceServer reset_srv_, pause_srv_, resume_srv_;
-  tf2_ros::TransformBroadcaster tf_;
+  ros::NodeHandle pnh_;
+  NodeSettings settings_;
+  std::unique_ptr<marble_maze::Session> session_;
+  SimClock clock_;
+  std::unique_ptr<StateOutput> out_;
+  std::unique_ptr<TiltInput> input_;
+  std::unique_ptr<SimServices> services_;
+  std::unique_ptr<Reconfigure> reconfigure_;
+  std::unique_ptr<Health> health_;
+  ros::Publisher clock_pub_;
   ros::Timer timer_;
+  ros::WallTimer free_run_;
+
+  double last_state_time_ = -1, last_marker_time_ = -1;  // s of simulated time published
+  ros::Time last_state_stamp_, last_marker_stamp_;
+  bool state_pending_ = false;  // a state was asked for at an instant already published
+  ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)
+  ros::Time last_frozen_;  // while paused: when the frozen state was last published
+  std::uint64_t skipped_steps_ = 0;
+  ros::WallTime free_run_start_;
+  double free_run_start_sim_ = 0;
+  ros::WallTime started_;
+  bool said_waiting_ = false;
 };
 
 }  // namespace marble_maze_ros

@@ -1,37 +1,45 @@
-// The ROS layer's translations, without a ROS master: the command queue and the markers.
+// The ROS layer's translations, without a ROS master: the clock's mapping, the maze's message and
+// the markers.
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "../../src/ros/command_queue.h"
+#include "../../src/ros/maze_description.h"
 #include "../../src/ros/maze_markers.h"
+#include "../../src/ros/sim_clock.h"
 #include "marble_maze/maze_file.h"
 
 namespace marble_maze_ros {
 namespace {
 
-TEST(CommandQueue, AppliesCommandsInStampOrderWhenDue) {
-  CommandQueue queue;
-  queue.push({2.0, TiltCommand::Kind::Angles, 0.2, 0});
-  queue.push({1.0, TiltCommand::Kind::Angles, 0.1, 0});
-  queue.push({1.0, TiltCommand::Kind::Rates, 0.15, 0});  // same stamp: after the first
-  queue.push({3.0, TiltCommand::Kind::Angles, 0.3, 0});
-  std::vector<double> applied;
-  queue.applyDue(2.0, [&](const TiltCommand& c) { applied.push_back(c.roll); });
-  EXPECT_EQ(applied, (std::vector<double>{0.1, 0.15, 0.2}));
-  EXPECT_EQ(queue.size(), 1u);
-  queue.applyDue(2.5, [&](const TiltCommand& c) { applied.push_back(c.roll); });
-  EXPECT_EQ(queue.size(), 1u);  // the 3 s command waits for its time
+TEST(SimClock, StampsFollowTheAnchorAndCommandsTakeTheNextStepAtOrAfterTheirStamp) {
+  SimClock clock;
+  clock.anchor(ros::Time(100.0), 2.0);  // simulated 2 s at ROS 100 s
+  EXPECT_EQ(clock.stampOf(2.5), ros::Time(100.5));
+  const double step = 0.001;
+  // Now: step 2000 at 2 s. A stamp 2.5 ms ahead: step 2003 is the first to start at or after it.
+  EXPECT_EQ(clock.stepAt(ros::Time(100.0025), 2000, 2.0, step), 2003u);
+  EXPECT_EQ(clock.stepAt(ros::Time(100.003), 2000, 2.0, step), 2003u);  // exactly a step's start
+  EXPECT_EQ(clock.stepAt(ros::Time(99.0), 2000, 2.0, step), 2000u);     // past: the next step
+  EXPECT_NEAR(clock.due(ros::Time(101.0)), 3.0, 1e-9);
 }
 
-TEST(CommandQueue, WhenFullDropsTheCommandStampedFurthestAhead) {
-  CommandQueue queue;
-  for (int i = 0; i < 10000; ++i) EXPECT_TRUE(queue.push({1.0 + i, TiltCommand::Kind::Angles}));
-  EXPECT_FALSE(queue.push({0.5, TiltCommand::Kind::Angles, 0.5, 0}));
-  EXPECT_EQ(queue.size(), 10000u);
-  std::vector<double> first;
-  queue.applyDue(1.0, [&](const TiltCommand& c) { first.push_back(c.stamp); });
-  EXPECT_EQ(first, (std::vector<double>{0.5, 1.0}));  // the most urgent one was kept
+TEST(MazeDescription, DescribesTheMazeAndReadsBackTheSameMaze) {
+  const marble_maze::Scene scene = marble_maze::loadScene("classic");
+  const marble_maze::MazeDescription msg = describe(scene, "board");
+  const marble_maze::Scene back = sceneOf(msg);
+  EXPECT_EQ(back.maze.size(), scene.maze.size());
+  for (int k = 0; k < scene.maze.size().z(); ++k)
+    for (int j = 0; j < scene.maze.size().y(); ++j)
+      for (int i = 0; i < scene.maze.size().x(); ++i)
+        EXPECT_EQ(back.maze.solid({i, j, k}), scene.maze.solid({i, j, k}));
+  EXPECT_TRUE(back.maze.start() == scene.maze.start());
+  EXPECT_EQ(back.maze.goals().size(), scene.maze.goals().size());
+  EXPECT_EQ(msg.holes.size(), scene.maze.holes().size());
+  EXPECT_EQ(back.params.tilt_limit, scene.params.tilt_limit);
+  marble_maze::MazeDescription broken = msg;
+  broken.solid.pop_back();
+  EXPECT_THROW(sceneOf(broken), std::runtime_error);
 }
 
 TEST(MazeMarkers, OneCubeListPerKindAndSizeWithStableIds) {

@@ -1,0 +1,47 @@
+#include "health.h"
+
+namespace marble_maze_ros {
+
+Health::Health(ros::NodeHandle& nh) : updater_(nh, ros::NodeHandle("~")) {
+  updater_.setHardwareID("marble_maze simulation");
+  updater_.add("simulation", this, &Health::report);
+  before_at_ = ros::WallTime::now();
+  // On wall time: with its own fast clock the node would otherwise report a thousand times a
+  // second, and with a stopped clock never.
+  timer_ = nh.createWallTimer(ros::WallDuration(1.0),
+                              [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+}
+
+void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const ros::WallTime at = ros::WallTime::now();
+  const double wall = (at - before_at_).toSec();
+  const double factor = wall > 0 ? (now_.simulated_time - before_.simulated_time) / wall : 0;
+  const double command_rate = wall > 0 ? (now_.commands - before_.commands) / wall : 0;
+  const std::uint64_t skipped = now_.skipped_steps - before_.skipped_steps;
+
+  using Level = diagnostic_msgs::DiagnosticStatus;
+  if (now_.paused)
+    status.summary(Level::OK, "paused");
+  else if (skipped > 0)
+    status.summaryf(Level::WARN, "fell behind: skipped %llu steps to catch up",
+                    static_cast<unsigned long long>(skipped));
+  else if (!now_.lockstep && now_.aimed_factor > 0 && factor < 0.9 * now_.aimed_factor)
+    status.summaryf(Level::WARN, "running at %.2f times real time, below the %.2f aimed at", factor,
+                    now_.aimed_factor);
+  else if (now_.queued > 1000)
+    status.summaryf(Level::WARN, "%zu tilt commands wait for their step (stamped far ahead?)",
+                    now_.queued);
+  else
+    status.summary(Level::OK, "running");
+  status.add("real-time factor", factor);
+  status.add("real-time factor aimed at (0: as fast as it can)", now_.aimed_factor);
+  status.add("steps skipped to catch up (last period)", skipped);
+  status.add("tilt commands per second", command_rate);
+  status.add("seconds since the last tilt command", now_.since_command);
+  status.add("commands queued", now_.queued);
+  status.add("simulated time (s)", now_.simulated_time);
+  before_ = now_;
+  before_at_ = at;
+}
+
+}  // namespace marble_maze_ros

@@ -1,0 +1,42 @@
+// The node's health on /diagnostics (diagnostic_updater, once a second of wall time): the
+// real-time factor reached against the one aimed at, steps skipped to catch up, the rate of
+// incoming tilt commands, the time since the last one and the command queue's length, with a
+// warning where one goes wrong (rqt_robot_monitor and rostopic echo /diagnostics show them).
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include <cstddef>
+#include <cstdint>
+
+namespace marble_maze_ros {
+
+/// What the node measures, as it stands now.
+struct HealthFigures {
+  double simulated_time = 0;        ///< s since the start
+  double aimed_factor = 1;          ///< times real time aimed at; 0 = as fast as it can
+  std::uint64_t skipped_steps = 0;  ///< steps skipped to catch up since the start
+  std::uint64_t commands = 0;       ///< tilt commands received since the start
+  double since_command = -1;        ///< s of ROS time since the last command; -1 none yet
+  std::size_t queued = 0;           ///< commands waiting for their step
+  bool paused = false;
+  bool lockstep = false;
+};
+
+class Health {
+ public:
+  explicit Health(ros::NodeHandle& nh);
+  /// The figures as they stand; the node calls it whenever they change.
+  void set(const HealthFigures& figures) { now_ = figures; }
+
+ private:
+  void report(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  diagnostic_updater::Updater updater_;
+  ros::WallTimer timer_;
+  HealthFigures now_, before_;
+  ros::WallTime before_at_;
+};
+
+}  // namespace marble_maze_ros

@@ -1,0 +1,173 @@
+#include "node_settings.h"
+
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace marble_maze_ros {
+namespace mm = marble_maze;
+
+namespace {
+
+/// A parameter's value as the text the core's parameter table reads ("0.7", "rolling",
+/// "0.1,0,0.006"; a list [0.1, 0, 0.006] is the same); throws naming the parameter when it has
+/// no such form.
+std::string asText(XmlRpc::XmlRpcValue value, const std::string& name) {
+  std::ostringstream out;
+  out << std::setprecision(17);
+  switch (value.getType()) {
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      out << static_cast<double>(value);
+      return out.str();
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(value));
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(value) ? "true" : "false";
+    case XmlRpc::XmlRpcValue::TypeString:
+      return static_cast<std::string>(value);
+    case XmlRpc::XmlRpcValue::TypeArray:
+      for (int i = 0; i < value.size(); ++i)
+        out << (i ? "," : "") << asText(value[i], name + "[" + std::to_string(i) + "]");
+      return out.str();
+    default:
+      throw std::runtime_error(name + ": expected a number, a string or a list of numbers");
+  }
+}
+
+double readNumber(const ros::NodeHandle& pnh, const std::string& key, double fallback, double min,
+                  double max) {
+  XmlRpc::XmlRpcValue value;
+  if (!pnh.getParam(key, value)) return fallback;
+  const std::string name = pnh.resolveName(key);
+  double number = 0;
+  if (!mm::parseFiniteNumber(asText(value, name), &number))
+    throw std::runtime_error(name + ": expected a number");
+  if (number < min || number > max) {
+    std::ostringstream msg;
+    msg << name << ": " << number << " is out of range [" << min << ", " << max << "]";
+    throw std::runtime_error(msg.str());
+  }
+  return number;
+}
+
+std::string readText(const ros::NodeHandle& pnh, const std::string& key,
+                     const std::string& fallback) {
+  XmlRpc::XmlRpcValue value;
+  if (!pnh.getParam(key, value)) return fallback;
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeString)
+    throw std::runtime_error(pnh.resolveName(key) + ": expected a string");
+  return static_cast<std::string>(value);
+}
+
+bool readFlag(const ros::NodeHandle& pnh, const std::string& key, bool fallback) {
+  XmlRpc::XmlRpcValue value;
+  if (!pnh.getParam(key, value)) return fallback;
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeBoolean)
+    throw std::runtime_error(pnh.resolveName(key) + ": expected true or false");
+  return static_cast<bool>(value);
+}
+
+const std::set<std::string>& nodeKeys() {
+  static const std::set<std::string> keys = {
+      "maze",         "update_rate", "publish_rate",    "marker_rate", "tilt_timeout",
+      "rate_timeout", "auto_reset",  "world_frame",     "board_frame", "marble_frame",
+      "clock",        "lockstep",    "real_time_factor"};
+  return keys;
+}
+
+}  // namespace
+
+mm::Scene sceneFor(const std::string& maze, const NodeSettings& settings) {
+  mm::Scene scene = mm::loadScene(maze);
+  for (const auto& [key, text] : settings.overrides) mm::setParam(scene.params, key, text);
+  mm::validate(scene.params);
+  return scene;
+}
+
+NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
+  // Every private parameter must be one we know: a misspelt one would otherwise do nothing.
+  std::set<std::string> known = nodeKeys();
+  for (const mm::ParamInfo& info : mm::paramInfos()) known.insert(info.key);
+  std::vector<std::string> names;
+  ros::param::getParamNames(names);
+  const std::string prefix = pnh.getNamespace() + "/";
+  for (const std::string& name : names) {
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string key =
+        name.substr(prefix.size(), name.find('/', prefix.size()) - prefix.size());
+    if (!known.count(key)) throw std::runtime_error(name + ": unknown parameter");
+  }
+
+  NodeSettings s;
+  s.maze = readText(pnh, "maze", s.maze);
+  s.update_rate = readNumber(pnh, "update_rate", s.update_rate, 1.0, 10000.0);
+  s.publish_rate = readNumber(pnh, "publish_rate", s.publish_rate, 0.1, 1e6);
+  s.marker_rate = readNumber(pnh, "marker_rate", s.marker_rate, 0.1, 1e6);
+  s.session.tilt_timeout = readNumber(pnh, "tilt_timeout", s.session.tilt_timeout, 0.0, 1e6);
+  s.session.rate_timeout = readNumber(pnh, "rate_timeout", s.session.rate_timeout, 0.0, 1e6);
+  s.session.auto_reset = readNumber(pnh, "auto_reset", s.session.auto_reset, 0.0, 1e6);
+  s.world_frame = readText(pnh, "world_frame", s.world_frame);
+  s.board_frame = readText(pnh, "board_frame", s.board_frame);
+  s.marble_frame = readText(pnh, "marble_frame", s.marble_frame);
+  s.own_clock = readFlag(pnh, "clock", s.own_clock);
+  s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor, 0.0, 1e6);
+  s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 1e6);
+  if (s.own_clock && s.lockstep > 0)
+    throw std::runtime_error(pnh.resolveName("lockstep") + ": a lockstep node owns /clock too; " +
+                             pnh.resolveName("clock") + " must not be set with it");
+
+  // The core's keys, as the runner's --set takes them, in the table's order (a preset first).
+  for (const mm::ParamInfo& info : mm::paramInfos()) {
+    XmlRpc::XmlRpcValue value;
+    if (pnh.getParam(info.key, value))
+      s.overrides.emplace_back(info.key, asText(value, pnh.resolveName(info.key)));
+  }
+  try {
+    *scene = sceneFor(s.maze, s);
+  } catch (const mm::MazeFileError& e) {
+    throw std::runtime_error(pnh.resolveName("maze") + ": " + e.what());
+  } catch (const mm::ParamError& e) {
+    throw std::runtime_error(prefix + e.what());
+  }
+  // Rates of simulated time: at most one message a step.
+  const double steps_per_second = 1.0 / scene->params.step;
+  for (const auto& [key, rate] : {std::pair<const char*, double>{"publish_rate", s.publish_rate},
+                                  {"marker_rate", s.marker_rate}})
+    if (rate > steps_per_second * (1 + 1e-9)) {
+      std::ostringstream msg;
+      msg << pnh.resolveName(key) << ": " << rate << " Hz is more than one a step ("
+          << steps_per_second << " Hz at step " << scene->params.step << " s)";
+      throw std::runtime_error(msg.str());
+    }
+  return s;
+}
+
+void writeBack(const ros::NodeHandle& pnh, const NodeSettings& s, const mm::Params& params) {
+  pnh.setParam("maze", s.maze);
+  pnh.setParam("update_rate", s.update_rate);
+  pnh.setParam("publish_rate", s.publish_rate);
+  pnh.setParam("marker_rate", s.marker_rate);
+  pnh.setParam("tilt_timeout", s.session.tilt_timeout);
+  pnh.setParam("rate_timeout", s.session.rate_timeout);
+  pnh.setParam("auto_reset", s.session.auto_reset);
+  pnh.setParam("world_frame", s.world_frame);
+  pnh.setParam("board_frame", s.board_frame);
+  pnh.setParam("marble_frame", s.marble_frame);
+  pnh.setParam("clock", s.own_clock);
+  pnh.setParam("real_time_factor", s.real_time_factor);
+  pnh.setParam("lockstep", s.lockstep);
+  for (const mm::ParamInfo& info : mm::paramInfos()) {
+    if (info.key == "start_position" && !params.has_start_position) continue;  // the start cell
+    const std::string text = mm::getParam(params, info.key);
+    double number = 0;
+    if (info.type == mm::ParamInfo::Type::Whole && mm::parseFiniteNumber(text, &number))
+      pnh.setParam(info.key, static_cast<int>(number));
+    else if (info.type == mm::ParamInfo::Type::Number && mm::parseFiniteNumber(text, &number))
+      pnh.setParam(info.key, number);
+    else
+      pnh.setParam(info.key, text);
+  }
+}
+
+}  // namespace marble_maze_ros

@@ -1,0 +1,43 @@
+// The node's settings: its own private parameters, and the core's keys set as private
+// parameters (as the runner's --set takes them). Read once at start; written back to the
+// parameter server so that `rosparam get` shows every value in force.
+#pragma once
+
+#include <ros/ros.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "marble_maze/maze_file.h"
+#include "marble_maze/session.h"
+
+namespace marble_maze_ros {
+
+struct NodeSettings {
+  std::string maze = "classic";
+  double update_rate = 200.0;            // Hz: how often ROS time is looked at for steps due
+  double publish_rate = 50.0;            // Hz of simulated time: marble_state, odom and tf
+  double marker_rate = 10.0;             // Hz of simulated time: the marble's markers
+  marble_maze::SessionSettings session;  // tilt_timeout, rate_timeout, auto_reset
+  std::string world_frame = "world", board_frame = "board", marble_frame = "marble";
+  bool own_clock = false;       // ~clock: the node owns /clock and runs free
+  double real_time_factor = 0;  // with ~clock: a multiple of real time; 0 = as fast as it can
+  double lockstep = 0;          // s: each tilt command advances this much; 0 = off
+  /// The core's keys given as private parameters, in the key table's order.
+  std::vector<std::pair<std::string, std::string>> overrides;
+};
+
+/// Reads every private parameter; throws std::runtime_error naming a bad one (unknown, of the
+/// wrong type, out of range, a maze that does not load). `scene` gets the maze and physics.
+NodeSettings readSettings(const ros::NodeHandle& pnh, marble_maze::Scene* scene);
+
+/// A maze (a built-in name or a file) with the physics of its file and these settings' keys over
+/// it; throws marble_maze::MazeFileError or ParamError.
+marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& settings);
+
+/// Puts every value in force on the parameter server, under the node's private namespace.
+void writeBack(const ros::NodeHandle& pnh, const NodeSettings& settings,
+               const marble_maze::Params& params);
+
+}  // namespace marble_maze_ros

@@ -1,0 +1,44 @@
+// What the node tells the ROS graph about the simulation: the scene (the latched `maze` and
+// `maze_markers`), the marble (`marble_state`, `odom`, tf world -> board -> marble), its events,
+// and the markers that change (`marble_marker`, `live_markers`). Stamps are the caller's.
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <deque>
+#include <string>
+
+#include "marble_maze/MarbleState.h"
+#include "marble_maze/simulation.h"
+#include "node_settings.h"
+
+namespace marble_maze_ros {
+
+class StateOutput {
+ public:
+  StateOutput(ros::NodeHandle& nh, const NodeSettings& settings);
+
+  /// The maze for planners and RViz (latched), at the start or, `replacing` another, a load.
+  void publishScene(const marble_maze::Simulation& sim, bool replacing);
+  /// The marble's state as a message (stamped).
+  marble_maze::MarbleState stateOf(const marble_maze::Simulation& sim,
+                                   const ros::Time& stamp) const;
+  /// marble_state, odom and tf at `stamp`; tf only when the stamp is new (tf listeners refuse
+  /// repeated stamps).
+  void publishState(const marble_maze::Simulation& sim, const ros::Time& stamp);
+  void publishMarkers(const marble_maze::Simulation& sim, const ros::Time& stamp);
+  void publishEvent(const marble_maze::Event& event, const ros::Time& stamp);
+  /// ROS time went back: tf stamps may start again from there.
+  void clearStamps() { last_tf_stamp_ = ros::Time(); }
+
+ private:
+  NodeSettings settings_;
+  ros::Publisher state_pub_, odom_pub_, event_pub_, maze_pub_, maze_markers_pub_,
+      marble_marker_pub_, live_markers_pub_;
+  tf2_ros::TransformBroadcaster tf_;
+  ros::Time last_tf_stamp_;
+  std::deque<marble_maze::Vec3> trail_;  // the marble's recent board-frame positions
+};
+
+}  // namespace marble_maze_ros

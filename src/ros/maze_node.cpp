@@ -186,7 +186,8 @@ void MazeNode::runSteps(std::uint64_t count) {
   for (std::uint64_t i = 0; i < count; ++i) {
     session_->run(1);
     for (const mm::Event& e : session_->events()) out_->publishEvent(e, clock_.stampOf(e.time));
-    publishDue(false);
+    // In lockstep the one state of a control period comes at its end.
+    if (settings_.lockstep <= 0) publishDue(false);
   }
 }
 
@@ -249,7 +250,11 @@ void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, dou
     updateHealth();
     return;
   }
-  const std::uint64_t at = clock_.anchored() ? clock_.stepAt(stamp, now, simTime(), step()) : now;
+  // Paused, time stands still: a command acts at the next step taken (by `step`, or on resume),
+  // so that an agent stepping the simulation drives it step by step.
+  const std::uint64_t at = clock_.anchored() && !session_->paused()
+                               ? clock_.stepAt(stamp, now, simTime(), step())
+                               : now;
   if (!session_->command({at, kind, roll, pitch}))
     ROS_WARN_THROTTLE(1.0,
                       "tilt commands stamped far ahead fill the queue; dropped the one furthest "
@@ -266,8 +271,12 @@ std::string MazeNode::reset() {
 }
 
 std::string MazeNode::pause() {
+  if (session_->paused()) return "";
   session_->pause();
   last_frozen_ = ros::Time();
+  // Steps taken while paused (`step`) follow on from here in simulated time.
+  if (settings_.lockstep <= 0 && !settings_.own_clock && clock_.anchored())
+    clock_.anchor(std::max(ros::Time::now(), stampNow()), simTime());
   return "";
 }
 
@@ -290,8 +299,6 @@ std::string MazeNode::stepPaused(std::uint32_t steps, marble_maze::MarbleState* 
   if (steps > kMostStepsPerCall)
     return "steps: at most " + std::to_string(kMostStepsPerCall) + " a call, got " +
            std::to_string(steps);
-  if (settings_.lockstep <= 0 && !settings_.own_clock)
-    clock_.anchor(std::max(ros::Time::now(), stampNow()), simTime());
   runSteps(steps);
   publishNow();
   *after = out_->stateOf(session_->simulation(), stampNow());

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""rostest of marble_maze_node's ROS-time timers (run by timeouts.test): ~tilt_timeout levels the
-board when tilt commands stop; ~auto_reset puts the marble back on the start after a hole.
+"""rostest of marble_maze_node's timed actions (run by timeouts.test), counted in steps of
+simulated time: ~tilt_timeout levels the board when tilt commands stop; ~rate_timeout stops a
+tilt rate whose publisher went quiet; ~auto_reset puts the marble back on the start after a hole.
 
 Tolerances: the board is level again within 1e-9 rad; the marble is back on the start within
 1e-6 m. Waits are generous (wall time) so that a loaded machine does not fail the test.
@@ -13,7 +14,7 @@ import unittest
 import rospy
 import rostest
 
-from marble_maze.msg import BoardTilt, MarbleState, MazeEvent
+from marble_maze.msg import BoardTilt, BoardTiltRate, MarbleState, MazeEvent
 
 WAIT = 10.0  # s of wall time
 
@@ -52,6 +53,7 @@ class Timeouts(unittest.TestCase):
         rospy.init_node("test_timeouts")
         cls.latest = Latest()
         cls.tilt = rospy.Publisher("tilt", BoardTilt, queue_size=10)
+        cls.rate = rospy.Publisher("tilt_rate", BoardTiltRate, queue_size=10)
         cls.start = cls.latest.wait_for(lambda s, e: True, timeout=30)
         assert cls.start is not None, "no marble_state"
 
@@ -87,6 +89,23 @@ class Timeouts(unittest.TestCase):
                 (start.x, start.y, start.z)) < 1e-6)
         self.assertIsNotNone(back, "the marble was not put back on the start")
 
+    def test_3_rate_commands_run_out(self):
+        # One rate command, then silence (a publisher that died): after ~rate_timeout (0.3 s in
+        # this launch) the board stops turning, at 0.1 rad/s x 0.3 s = 0.03 rad, instead of
+        # turning on to its limit; the tilt timeout (0.5 s) then levels it.
+        deadline = time.time() + WAIT
+        while self.rate.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.01)
+        self.send(0.0, 0.0)
+        self.latest.wait_for(lambda s, e: abs(s.roll) < 1e-9)
+        self.rate.publish(BoardTiltRate(roll_rate=0.1, pitch_rate=0.0))
+        self.assertIsNotNone(self.latest.wait_for(lambda s, e: s.roll > 0.005), "never turned")
+        highest, end = 0.0, time.time() + 1.5
+        while time.time() < end:
+            with self.latest.lock:
+                highest = max(highest, self.latest.state.roll)
+            time.sleep(0.005)
+        self.assertAlmostEqual(highest, 0.03, delta=0.002)
 
 if __name__ == "__main__":
     rostest.rosrun("marble_maze", "test_timeouts", Timeouts)

@@ -1,0 +1,47 @@
+#!/usr/bin/env python3
+"""A gym-like agent loop over plain topics, for a node started with ~lockstep (e.g.
+roslaunch marble_maze sim.launch lockstep:=0.02): each tilt command advances the simulation one
+control period, and the state after it comes back. This agent steers the marble to a point of the
+board (~x, ~y, m) for ~commands periods and prints how many steps a second of wall time it ran."""
+import math
+import threading
+import time
+
+import rospy
+from marble_maze.msg import BoardTilt, MarbleState
+
+
+def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
+    """Plays `commands` periods; returns the last state and the periods per second of wall time."""
+    state, lock = [None], threading.Condition()
+
+    def on_state(msg):
+        with lock:
+            state[0] = msg
+            lock.notify()
+
+    rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1)
+    tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1)
+    while tilt.get_num_connections() == 0 and not rospy.is_shutdown():
+        time.sleep(0.05)
+    command, begin = BoardTilt(), time.time()
+    for _ in range(commands):  # act, then observe: one control period each time
+        with lock:
+            state[0] = None
+            tilt.publish(command)
+            lock.wait_for(lambda: state[0] is not None, timeout=5.0)
+            s = state[0]
+        ax = gain[0] * (x - s.position_in_board.x) - gain[1] * s.velocity.x
+        ay = gain[0] * (y - s.position_in_board.y) - gain[1] * s.velocity.y
+        command = BoardTilt(pitch=math.asin(max(-0.17, min(0.17, ax / 7.0))),
+                            roll=-math.asin(max(-0.17, min(0.17, ay / 7.0))))
+    return s, commands / (time.time() - begin)
+
+
+if __name__ == "__main__":
+    rospy.init_node("lockstep_agent")
+    last, rate = run(rospy.get_param("~x", 0.05), rospy.get_param("~y", 0.03),
+                     rospy.get_param("~commands", 500))
+    print("marble at (%.3f, %.3f) m after %d periods: %.0f periods a second of wall time"
+          % (last.position_in_board.x, last.position_in_board.y, rospy.get_param("~commands", 500),
+             rate))

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""rostest of ~lockstep (run by lockstep.test, control period 0.02 s): each tilt command is
+answered by a marble_state exactly one control period (20 steps) later in simulated time, with
+the command in force; and the example agent (examples/lockstep_agent.py) brings the marble within
+5 mm of its point, printing the steps per second of wall time it reaches."""
+import importlib.util
+import os
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+
+from marble_maze.msg import BoardTilt, MarbleState
+
+PERIOD_NS = 20 * 10**6
+COMMANDS = 200
+
+
+class LockstepTest(unittest.TestCase):
+    def test_each_command_advances_one_period(self):
+        states, arrived = [], threading.Condition()
+
+        def on_state(msg):
+            with arrived:
+                states.append(msg)
+                arrived.notify()
+
+        rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1000)
+        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=10)
+        deadline = time.time() + 20
+        while tilt.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
+        time.sleep(0.5)
+        begin = time.time()
+        for k in range(COMMANDS):
+            with arrived:
+                before = len(states)
+                tilt.publish(BoardTilt(roll=0.0, pitch=0.05))
+                self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5),
+                                "no state after command %d" % k)
+        wall = time.time() - begin
+        stamps = [s.header.stamp.to_nsec() for s in states[-COMMANDS:]]
+        steps = [(b - a) for a, b in zip(stamps, stamps[1:])]
+        self.assertEqual(set(steps), {PERIOD_NS})
+        self.assertAlmostEqual(states[-1].pitch, 0.05, delta=1e-9)  # the command in force
+        print("lockstep: %d commands in %.2f s of wall time: %.0f steps per second"
+              % (COMMANDS, wall, COMMANDS * 20 / wall))
+
+    def test_the_example_agent_reaches_its_point(self):
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                            "lockstep_agent.py")
+        spec = importlib.util.spec_from_file_location("lockstep_agent", path)
+        agent = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(agent)
+        last, rate = agent.run(x=-0.04, y=0.02, commands=400)  # 8 s of simulated time
+        print("example agent: %.0f periods (x 20 steps) a second of wall time" % rate)
+        off = ((last.position_in_board.x + 0.04) ** 2 + (last.position_in_board.y - 0.02) ** 2) ** 0.5
+        self.assertLess(off, 0.005)
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_lockstep")
+    rostest.rosrun("marble_maze", "lockstep", LockstepTest)

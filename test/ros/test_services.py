@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""rostest of the node's services and live tuning (run by services.test, maze open_room.yaml).
+
+  - step: refused while running; while paused it advances exactly N steps (the state's stamp
+    moves by N steps of 1 ms, within 1 ns); the same sequence of reset, place_marble, tilt and
+    step calls gives bit-identical states;
+  - place_marble: refused inside a tile and off the board, the marble staying where it was;
+  - load_maze: refused for a missing and a malformed file (file:line:col), the old maze still
+    running; a built-in maze loads, `maze` and the markers follow;
+  - dynamic_reconfigure: restitution 0.9 acts on the next bounce as eq. (1) says (the upward
+    speed after it is 0.9 times the approach, less the gravity since, within 1e-6 m/s); a bad
+    value is refused and nothing changes; the values in force are on the parameter server;
+  - /diagnostics carries the real-time factor; odom is published in world with child marble.
+"""
+import os
+import tempfile
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from dynamic_reconfigure.client import Client
+from geometry_msgs.msg import Point, Vector3
+from nav_msgs.msg import Odometry
+from std_srvs.srv import Trigger
+
+from marble_maze.msg import BoardTilt, MarbleState, MazeDescription, MazeEvent
+from marble_maze.srv import LoadMaze, PlaceMarble, Step
+
+NODE = "/marble_maze"
+G, STEP = 9.81, 0.001
+RADIUS = 0.006
+
+
+def call(name, srv_type, *args):
+    rospy.wait_for_service(name, timeout=20)
+    return rospy.ServiceProxy(name, srv_type)(*args)
+
+
+def stamp_ns(msg):
+    return msg.header.stamp.secs * 10**9 + msg.header.stamp.nsecs
+
+
+class Latest:
+    def __init__(self, topic, msg_type):
+        self.lock = threading.Lock()
+        self.all = []
+        rospy.Subscriber(topic, msg_type, self._on, queue_size=1000)
+
+    def _on(self, msg):
+        with self.lock:
+            self.all.append(msg)
+
+    def wait(self, predicate, timeout=10.0):
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            with self.lock:
+                found = [m for m in self.all if predicate(m)]
+            if found:
+                return found[0]
+            time.sleep(0.02)
+        return None
+
+
+class ServicesTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tilt = rospy.Publisher("tilt", BoardTilt, queue_size=10)
+        cls.states = Latest("marble_state", MarbleState)
+        cls.events = Latest("events", MazeEvent)
+        cls.mazes = Latest("maze", MazeDescription)
+        cls.diagnostics = Latest("/diagnostics", DiagnosticArray)
+        cls.odom = Latest("odom", Odometry)
+        time.sleep(1.0)
+
+    def setUp(self):
+        call("resume", Trigger)
+        call("reset", Trigger)
+
+    def place(self, x, y, z, v=(0, 0, 0), w=(0, 0, 0)):
+        return call("place_marble", PlaceMarble, Point(x, y, z), Vector3(*v), Vector3(*w))
+
+    def test_1_step_only_while_paused_and_exactly_n(self):
+        self.assertFalse(call("step", Step, 10).success)
+        self.assertIn("pause", call("step", Step, 10).message)
+        call("pause", Trigger)
+        first = call("step", Step, 1)
+        self.assertTrue(first.success, first.message)
+        after = call("step", Step, 250)
+        self.assertTrue(after.success, after.message)
+        self.assertEqual(stamp_ns(after.state) - stamp_ns(first.state), 250 * 10**6)
+        self.assertFalse(call("step", Step, 0).success)
+
+    def sequence(self):
+        call("pause", Trigger)
+        call("reset", Trigger)
+        self.assertTrue(self.place(0.01, -0.02, RADIUS + 0.004, (0.1, 0.05, 0), (0, 2, 0)).success)
+        self.tilt.publish(BoardTilt(roll=0.05, pitch=-0.03))
+        time.sleep(0.3)  # the command arrives while paused: it acts at the next step taken
+        call("step", Step, 300)
+        self.tilt.publish(BoardTilt(roll=-0.04, pitch=0.02))
+        time.sleep(0.3)
+        return call("step", Step, 700).state
+
+    def test_2_the_same_calls_give_bit_identical_states(self):
+        a, b = self.sequence(), self.sequence()
+        for field in ("position", "velocity", "angular_velocity", "position_in_board"):
+            va, vb = getattr(a, field), getattr(b, field)
+            self.assertEqual((va.x, va.y, va.z), (vb.x, vb.y, vb.z), field)
+        self.assertEqual((a.roll, a.pitch), (b.roll, b.pitch))
+        self.assertNotEqual(a.position_in_board.x, 0.01, "the marble did move")
+
+    def test_3_place_refuses_tiles_and_off_board(self):
+        call("pause", Trigger)
+        before = call("step", Step, 1).state.position_in_board
+        inside = self.place(0.0, 0.0, 0.001)  # sunk into the floor
+        self.assertFalse(inside.success)
+        self.assertIn("inside tile", inside.message)
+        off = self.place(0.5, 0.0, RADIUS)
+        self.assertFalse(off.success)
+        self.assertIn("off the board", off.message)
+        still = call("step", Step, 1).state.position_in_board
+        self.assertAlmostEqual(still.x, before.x, delta=1e-9)
+        ok = self.place(0.03, 0.02, RADIUS)
+        self.assertTrue(ok.success, ok.message)
+        self.assertAlmostEqual(call("step", Step, 1).state.position_in_board.x, 0.03, delta=1e-6)
+
+    def test_4_load_maze_refuses_bad_files_and_loads_a_good_one(self):
+        missing = call("load_maze", LoadMaze, "/nonexistent/maze.yaml")
+        self.assertFalse(missing.success)
+        self.assertIn("/nonexistent/maze.yaml", missing.message)
+        with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
+            f.write("grid:\n  x: [0.005, 0.02]\n  y: 0.01\n  z: 0.01\nlayout: |\n  +?+\n")
+        broken = call("load_maze", LoadMaze, f.name)
+        os.unlink(f.name)
+        self.assertFalse(broken.success)
+        self.assertIn(os.path.basename(f.name) + ":6:", broken.message)
+        self.assertEqual(self.mazes.all[-1].name, "open_room")  # the old maze runs on
+        loaded = call("load_maze", LoadMaze, "prototype")
+        self.assertTrue(loaded.success, loaded.message)
+        self.assertIsNotNone(self.mazes.wait(lambda m: m.name == "prototype"))
+        self.assertEqual(rospy.get_param(NODE + "/maze"), "prototype")
+        back = call("load_maze", LoadMaze, rospy.get_param("~maze"))
+        self.assertTrue(back.success, back.message)
+
+    def test_5_reconfigure_restitution_acts_on_the_next_bounce(self):
+        client = Client(NODE, timeout=20)
+        self.assertEqual(rospy.get_param(NODE + "/restitution"), 0.5)  # written back at start
+        client.update_configuration({"restitution": 0.9})
+        self.assertEqual(rospy.get_param(NODE + "/restitution"), 0.9)
+        refused = client.update_configuration({"restitution": 1.5})  # beyond [0, 1]
+        self.assertEqual(refused["restitution"], 0.9)
+        start = len(self.events.all)
+        self.assertTrue(self.place(0.0, 0.0, RADIUS + 0.01).success)
+        bounce = self.events.wait(lambda e: e.kind == MazeEvent.COLLISION and
+                                  self.events.all.index(e) >= start)
+        self.assertIsNotNone(bounce, "no bounce")
+        after = self.states.wait(lambda m: m.header.stamp > bounce.header.stamp)
+        dt = (after.header.stamp - bounce.header.stamp).to_sec()
+        # Eq. (1) on a level board at rest: v' = e v, then gravity for dt.
+        self.assertAlmostEqual(after.velocity.z, 0.9 * bounce.impact_speed - G * dt, delta=1e-6)
+        client.update_configuration({"restitution": 0.5})
+
+    def test_6_diagnostics_and_odometry(self):
+        status = self.diagnostics.wait(
+            lambda a: any(any(kv.key == "real-time factor" for kv in s.values) for s in a.status),
+            timeout=10)
+        self.assertIsNotNone(status, "no real-time factor on /diagnostics")
+        odom = self.odom.wait(lambda m: True)
+        self.assertEqual((odom.header.frame_id, odom.child_frame_id), ("world", "marble"))
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_services")
+    rostest.rosrun("marble_maze", "services", ServicesTest)

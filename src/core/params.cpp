@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <iomanip>
 #include <limits>
@@ -38,10 +40,14 @@ Vec3 parseVec3(const std::string& key, const std::string& text) {
   return v;
 }
 
+/// The shortest text that reads back as exactly the same double.
 std::string format(double value) {
-  std::ostringstream out;
-  out << std::setprecision(10) << value;
-  return out.str();
+  char text[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
 }
 
 std::string format(const Vec3& v) {

@@ -252,9 +252,8 @@ void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, dou
   }
   // Paused, time stands still: a command acts at the next step taken (by `step`, or on resume),
   // so that an agent stepping the simulation drives it step by step.
-  const std::uint64_t at = clock_.anchored() && !session_->paused()
-                               ? clock_.stepAt(stamp, now, simTime(), step())
-                               : now;
+  const std::uint64_t at =
+      clock_.anchored() && !session_->paused() ? clock_.stepAt(stamp, now, simTime(), step()) : now;
   if (!session_->command({at, kind, roll, pitch}))
     ROS_WARN_THROTTLE(1.0,
                       "tilt commands stamped far ahead fill the queue; dropped the one furthest "

@@ -73,8 +73,8 @@ class MazeNode {
   double last_state_time_ = -1, last_marker_time_ = -1;  // s of simulated time published
   ros::Time last_state_stamp_, last_marker_stamp_;
   bool state_pending_ = false;  // a state was asked for at an instant already published
-  ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)
-  ros::Time last_frozen_;  // while paused: when the frozen state was last published
+  ros::Time last_now_;          // the latest ROS time seen (a clock going back is followed)
+  ros::Time last_frozen_;       // while paused: when the frozen state was last published
   std::uint64_t skipped_steps_ = 0;
   ros::WallTime free_run_start_;
   double free_run_start_sim_ = 0;

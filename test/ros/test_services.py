@@ -2,7 +2,8 @@
 """rostest of the node's services and live tuning (run by services.test, maze open_room.yaml).
 
   - step: refused while running; while paused it advances exactly N steps (the state's stamp
-    moves by N steps of 1 ms, within 1 ns); the same sequence of reset, place_marble, tilt and
+    moves by N steps of 1 ms, within 1 ns), and the frozen state goes on being published; the
+    same sequence of reset, place_marble, tilt and
     step calls gives bit-identical states;
   - place_marble: refused inside a tile and off the board, the marble staying where it was;
   - load_maze: refused for a missing and a malformed file (file:line:col), the old maze still
@@ -92,6 +93,12 @@ class ServicesTest(unittest.TestCase):
         self.assertTrue(after.success, after.message)
         self.assertEqual(stamp_ns(after.state) - stamp_ns(first.state), 250 * 10**6)
         self.assertFalse(call("step", Step, 0).success)
+        # Paused, the frozen state goes on being published (tf does not go stale).
+        count = len(self.states.all)
+        time.sleep(0.5)
+        frozen = self.states.all[count:]
+        self.assertGreater(len(frozen), 10)
+        self.assertEqual({m.position.x for m in frozen}, {after.state.position.x})
 
     def sequence(self):
         call("pause", Trigger)

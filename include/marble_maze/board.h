@@ -2,6 +2,7 @@
 // top surface, driven by target angles or by tilt rates, within a tilt and a tilt-rate limit.
 #pragma once
 
+#include "marble_maze/bytes.h"
 #include "marble_maze/geometry.h"
 #include "marble_maze/params.h"
 
@@ -32,6 +33,10 @@ class Board {
   const Vec3& angularVelocity() const { return angular_velocity_; }
 
   static Mat3 rotationFor(double roll, double pitch);
+
+  /// Everything that changes as the board moves (not its limits), bit for bit.
+  void save(ByteWriter* out) const;
+  void restore(ByteReader* in);
 
  private:
   enum class Drive { Target, Rate };

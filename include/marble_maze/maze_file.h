@@ -14,6 +14,8 @@ namespace marble_maze {
 struct Scene {
   Maze maze;
   Params params;
+  std::string text;    ///< the maze file's text it was read from ("" when built in code)
+  std::string source;  ///< where the text came from: a path or "<embedded:NAME>"
 };
 
 /// A malformed maze file. what() reads "SOURCE:LINE:COLUMN: message" (1-based line and column).

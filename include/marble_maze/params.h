@@ -87,6 +87,13 @@ void setParam(Params& params, const std::string& key, const std::string& value);
 /// The key's current value as text, in the form setParam accepts.
 std::string getParam(const Params& params, const std::string& key);
 
+/// Every key's value as lines "key=value", in the table's order, each reading back exactly (the
+/// start position only when one is set).
+std::string paramsText(const Params& params);
+
+/// Params from paramsText's lines over `base`; throws ParamError naming a bad line.
+Params paramsFromText(const std::string& text, Params base = Params());
+
 /// Reads a finite number that is the whole of `text` (spaces around it allowed); false otherwise.
 bool parseFiniteNumber(const std::string& text, double* value);
 

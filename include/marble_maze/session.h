@@ -66,6 +66,17 @@ class Session {
   std::size_t queued() const { return queue_.size(); }
   /// Steps since the last command was applied (since the start if none was).
   std::uint64_t stepsSinceCommand() const { return sim_.steps() - last_command_step_; }
+  /// The commands applied in the last run(), in order, each with the step it took effect at.
+  const std::vector<TiltCommand>& applied() const { return applied_; }
+
+  /// Every value the next step depends on but the scene (maze and physics): the simulation's
+  /// state, the queued commands, the pause and the timed actions' clocks, bit for bit.
+  std::vector<std::uint8_t> save() const;
+  /// Back to a saved state (of a session with the same scene); throws std::runtime_error on
+  /// bytes that are not a state, changing nothing.
+  void restore(const std::vector<std::uint8_t>& bytes);
+  /// A fingerprint of save(): equal states have equal fingerprints.
+  std::uint64_t fingerprint() const;
 
   static constexpr std::size_t kQueueCapacity = 10000;
 
@@ -77,6 +88,7 @@ class Session {
   Simulation sim_;
   std::deque<TiltCommand> queue_;
   std::vector<Event> events_;
+  std::vector<TiltCommand> applied_;
   bool paused_ = false;
   bool commanded_ = false;  // a command was applied since the start or the last reset
   std::uint64_t last_command_step_ = 0;

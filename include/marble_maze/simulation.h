@@ -51,6 +51,9 @@ class Simulation {
   void setParams(const Params& params);
   SimulationState state() const;
   void restore(const SimulationState& state);
+  /// The state as bytes, bit for bit (the scene, maze and physics, is not in them).
+  void save(ByteWriter* out) const;
+  void restore(ByteReader* in);
   /// Why the marble cannot be placed at a board-frame position (inside a tile, off the board),
   /// or "" when it can.
   std::string whyNotPlaceable(const Vec3& position_in_board) const;

@@ -32,6 +32,24 @@ Mat3 Board::rotationFor(double roll, double pitch) {
   return r;
 }
 
+void Board::save(ByteWriter* out) const {
+  out->put(static_cast<std::int32_t>(drive_));
+  for (double v : {approach_step_, approach_, target_roll_, target_pitch_, roll_rate_, pitch_rate_,
+                   roll_, pitch_})
+    out->put(v);
+  out->put(rotation_);
+  out->put(angular_velocity_);
+}
+
+void Board::restore(ByteReader* in) {
+  drive_ = static_cast<Drive>(in->get<std::int32_t>());
+  for (double* v : {&approach_step_, &approach_, &target_roll_, &target_pitch_, &roll_rate_,
+                    &pitch_rate_, &roll_, &pitch_})
+    *v = in->get<double>();
+  rotation_ = in->mat3();
+  angular_velocity_ = in->vec3();
+}
+
 void Board::reset(double roll, double pitch) {
   roll_ = target_roll_ = clampTilt(roll);
   pitch_ = target_pitch_ = clampTilt(pitch);

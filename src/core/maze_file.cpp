@@ -501,7 +501,10 @@ MazeFileError::MazeFileError(const std::string& source, int line, int column,
       message(message) {}
 
 Scene parseScene(const std::string& text, const std::string& source, const Params& defaults) {
-  return SceneParser(text, source, defaults).parse();
+  Scene scene = SceneParser(text, source, defaults).parse();
+  scene.text = text;
+  scene.source = source;
+  return scene;
 }
 
 Scene loadSceneFile(const std::string& path, const Params& defaults) {

@@ -271,6 +271,27 @@ std::string getParam(const Params& params, const std::string& key) {
   return find(key).get(params);
 }
 
+std::string paramsText(const Params& params) {
+  std::string text;
+  for (const auto& e : entries()) {
+    if (e.info.key == "start_position" && !params.has_start_position) continue;
+    text += e.info.key + "=" + e.get(params) + "\n";
+  }
+  return text;
+}
+
+Params paramsFromText(const std::string& text, Params base) {
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.empty()) continue;
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) throw ParamError("expected key=value, got '" + line + "'");
+    setParam(base, line.substr(0, eq), line.substr(eq + 1));
+  }
+  return base;
+}
+
 double Params::leastBounceThreshold() const {
   // Semi-implicit Euler's velocity lags its position by half a substep: a marble a hair above
   // the floor meets it at up to g h faster than it truly does, and would bounce on it forever

@@ -24,6 +24,8 @@ bool Session::command(const TiltCommand& command) {
 }
 
 void Session::apply(const TiltCommand& command) {
+  applied_.push_back(command);
+  applied_.back().step = sim_.steps();
   if (command.kind == TiltCommand::Kind::Angles)
     sim_.setTargetTilt(command.roll, command.pitch);
   else
@@ -36,6 +38,7 @@ void Session::apply(const TiltCommand& command) {
 
 void Session::run(std::uint64_t count) {
   events_.clear();
+  applied_.clear();
   for (std::uint64_t i = 0; i < count; ++i) {
     while (!queue_.empty() && queue_.front().step <= sim_.steps()) {
       apply(queue_.front());
@@ -97,6 +100,66 @@ void Session::load(const Scene& scene) {
 
 void Session::setParams(const Params& params) {
   sim_.setParams(params);
+}
+
+namespace {
+constexpr std::uint32_t kSnapshotVersion = 1;
+}
+
+std::vector<std::uint8_t> Session::save() const {
+  ByteWriter out;
+  out.put(kSnapshotVersion);
+  sim_.save(&out);
+  out.put(static_cast<std::uint64_t>(queue_.size()));
+  for (const TiltCommand& c : queue_) {
+    out.put(c.step);
+    out.put(static_cast<std::int32_t>(c.kind));
+    out.put(c.roll);
+    out.put(c.pitch);
+  }
+  for (bool flag : {paused_, commanded_, driving_rates_, levelled_, finished_})
+    out.put(static_cast<std::uint8_t>(flag));
+  out.put(last_command_step_);
+  out.put(finished_step_);
+  return out.bytes();
+}
+
+void Session::restore(const std::vector<std::uint8_t>& bytes) {
+  ByteReader in(bytes);
+  if (in.get<std::uint32_t>() != kSnapshotVersion)
+    throw std::runtime_error("snapshot: not a state of this version");
+  Simulation sim = sim_;
+  sim.restore(&in);
+  const auto queued = in.get<std::uint64_t>();
+  if (queued > kQueueCapacity)
+    throw std::runtime_error("snapshot: more commands than a queue holds");
+  std::deque<TiltCommand> queue(queued);
+  for (TiltCommand& c : queue) {
+    c.step = in.get<std::uint64_t>();
+    c.kind = static_cast<TiltCommand::Kind>(in.get<std::int32_t>());
+    c.roll = in.get<double>();
+    c.pitch = in.get<double>();
+  }
+  bool flags[5];
+  for (bool& flag : flags) flag = in.get<std::uint8_t>() != 0;
+  const auto last_command = in.get<std::uint64_t>();
+  const auto finished_step = in.get<std::uint64_t>();
+  if (!in.done()) throw std::runtime_error("snapshot: bytes left over after the state");
+  sim_ = sim;
+  queue_ = queue;
+  paused_ = flags[0];
+  commanded_ = flags[1];
+  driving_rates_ = flags[2];
+  levelled_ = flags[3];
+  finished_ = flags[4];
+  last_command_step_ = last_command;
+  finished_step_ = finished_step;
+  events_.clear();
+  applied_.clear();
+}
+
+std::uint64_t Session::fingerprint() const {
+  return marble_maze::fingerprint(save());
 }
 
 }  // namespace marble_maze

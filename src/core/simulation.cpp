@@ -52,6 +52,45 @@ void Simulation::restore(const SimulationState& state) {
   events_.clear();
 }
 
+void Simulation::save(ByteWriter* out) const {
+  out->put(marble_.position);
+  out->put(marble_.velocity);
+  out->put(marble_.angular_velocity);
+  for (double c : {marble_.orientation.w(), marble_.orientation.x(), marble_.orientation.y(),
+                   marble_.orientation.z()})
+    out->put(c);
+  out->put(static_cast<std::int32_t>(marble_.phase));
+  out->put(static_cast<std::int32_t>(marble_.contacts));
+  board_.save(out);
+  out->put(held_in_grid_);
+  out->put(time_);
+  out->put(steps_);
+}
+
+void Simulation::restore(ByteReader* in) {
+  Marble m;
+  m.position = in->vec3();
+  m.velocity = in->vec3();
+  m.angular_velocity = in->vec3();
+  const double w = in->get<double>(), x = in->get<double>(), y = in->get<double>(),
+               z = in->get<double>();
+  m.orientation = Quat(w, x, y, z);
+  m.phase = static_cast<MarblePhase>(in->get<std::int32_t>());
+  m.contacts = in->get<std::int32_t>();
+  Board board = board_;
+  board.restore(in);
+  const Vec3 held = in->vec3();
+  const double time = in->get<double>();
+  const auto steps = in->get<std::uint64_t>();
+  marble_ = m;
+  board_ = board;
+  held_in_grid_ = held;
+  time_ = time;
+  steps_ = steps;
+  frame_ = gridFrame();
+  events_.clear();
+}
+
 std::string Simulation::whyNotPlaceable(const Vec3& position_in_board) const {
   if (!position_in_board.allFinite()) return "the position is not finite";
   const Vec3 grid = position_in_board + maze_.pivot();

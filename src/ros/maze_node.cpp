@@ -1,5 +1,7 @@
 #include "maze_node.h"
 
+#include <tf2_eigen/tf2_eigen.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -32,7 +34,11 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   mm::Scene scene;
   settings_ = readSettings(pnh, &scene);
   session_ = std::make_unique<mm::Session>(scene, settings_.session);
+  maze_text_ = scene.text;
+  maze_source_ = scene.source;
   started_ = ros::WallTime::now();
+  log_ = std::make_unique<SessionLog>(nh, settings_);
+  log_->scene(*session_, maze_text_, maze_source_);
 
   out_ = std::make_unique<StateOutput>(nh, settings_);
   input_ = std::make_unique<TiltInput>(
@@ -83,7 +89,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
 
   if (settings_.own_clock || settings_.lockstep > 0) {
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
-    clock_.anchor(ros::Time(0), 0);  // ROS time is simulated time
+    reanchor(ros::Time(0), 0);  // ROS time is simulated time
     publishNow();
   }
   if (settings_.own_clock) {
@@ -98,6 +104,25 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
 
 ros::Time MazeNode::stampNow() const {
   return clock_.stampOf(simTime());
+}
+
+std::uint64_t MazeNode::stepsPer(double seconds) const {
+  return std::max<std::uint64_t>(1, std::llround(seconds / step()));
+}
+
+void MazeNode::reanchor(const ros::Time& origin, double sim_time) {
+  clock_.anchor(origin, sim_time);
+  log_->anchor(clock_, session_->steps(), stampNow());
+  if (!snapshotted_) {  // the first: a bag started now has where the session stands
+    snapshotted_ = true;
+    log_->snapshot(*session_, clock_, stampNow());
+  }
+}
+
+void MazeNode::logInput(std::uint8_t kind, marble_maze::SimInput input) {
+  log_->input(input, kind, session_->steps(), stampNow());
+  if (kind != marble_maze::SimInput::PAUSE && kind != marble_maze::SimInput::RESUME)
+    log_->snapshot(*session_, clock_, stampNow());
 }
 
 void MazeNode::publishClock() {
@@ -117,7 +142,7 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
     return;
   }
   if (!clock_.anchored()) {  // the first tick of a running clock
-    clock_.anchor(now, simTime());
+    reanchor(now, simTime());
     last_now_ = now;
     publishNow();
     return;
@@ -125,7 +150,7 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
   if (now < last_now_) {
     ROS_WARN("ROS time went back by %.3f s (a bag looping? a restarted clock?); following it",
              (last_now_ - now).toSec());
-    clock_.anchor(now, simTime());
+    reanchor(now, simTime());
     out_->clearStamps();
     last_state_stamp_ = last_marker_stamp_ = ros::Time();
     last_now_ = now;
@@ -149,7 +174,7 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
     ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
                       (due - most) * step());
     skipped_steps_ += due - most;
-    clock_.anchor(now, simTime() + most * step());
+    reanchor(now, simTime() + most * step());
     due = most;
   }
   if (due > 0) runSteps(static_cast<std::uint64_t>(due));
@@ -183,34 +208,44 @@ void MazeNode::onFreeRun(const ros::WallTimerEvent&) {
 }
 
 void MazeNode::runSteps(std::uint64_t count) {
+  const std::uint64_t snapshot_every = stepsPer(1.0);
   for (std::uint64_t i = 0; i < count; ++i) {
+    const ros::Time before = stampNow();
     session_->run(1);
+    for (const mm::TiltCommand& c : session_->applied()) {
+      marble_maze::SimInput input;
+      input.roll = c.roll;
+      input.pitch = c.pitch;
+      log_->input(input,
+                  c.kind == mm::TiltCommand::Kind::Angles ? marble_maze::SimInput::TILT
+                                                          : marble_maze::SimInput::TILT_RATE,
+                  c.step, before);
+    }
     for (const mm::Event& e : session_->events()) out_->publishEvent(e, clock_.stampOf(e.time));
+    if (session_->steps() % snapshot_every == 0) log_->snapshot(*session_, clock_, stampNow());
     // In lockstep the one state of a control period comes at its end.
     if (settings_.lockstep <= 0) publishDue(false);
   }
 }
 
 void MazeNode::publishDue(bool force) {
-  // States and markers at their rates of simulated time, whatever the mode, each stamp later
-  // than the one before: a state asked for at an instant already published (a reset just after
-  // a step) goes out with the next step instead. Paused on ROS time, the frozen state is stamped
-  // with the ROS time that passes.
-  const double t = simTime(), half_step = 0.5 * step();
+  // States and markers at their rates of simulated time, whatever the mode: at the steps whose
+  // count is a multiple of the period, so that a replay from a snapshot publishes at the same
+  // steps as the session it replays. Each stamp is later than the one before: a state asked for
+  // at an instant already published (a reset just after a step) goes out with the next step.
+  // Paused on ROS time, the frozen state is stamped with the ROS time that passes.
+  const std::uint64_t n = session_->steps();
   ros::Time stamp = stampNow();
   if (session_->paused() && !settings_.own_clock && settings_.lockstep <= 0)
     stamp = std::max(ros::Time::now(), stamp);
-  if (force || state_pending_ || t - last_state_time_ >= 1.0 / settings_.publish_rate - half_step) {
+  if (force || state_pending_ || n % stepsPer(1.0 / settings_.publish_rate) == 0) {
     state_pending_ = stamp <= last_state_stamp_;
     if (!state_pending_) {
-      last_state_time_ = t;
       last_state_stamp_ = stamp;
       out_->publishState(session_->simulation(), stamp);
     }
   }
-  if ((force || t - last_marker_time_ >= 1.0 / settings_.marker_rate - half_step) &&
-      stamp > last_marker_stamp_) {
-    last_marker_time_ = t;
+  if ((force || n % stepsPer(1.0 / settings_.marker_rate) == 0) && stamp > last_marker_stamp_) {
     last_marker_stamp_ = stamp;
     out_->publishMarkers(session_->simulation(), stamp);
   }
@@ -265,6 +300,7 @@ void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, dou
 
 std::string MazeNode::reset() {
   session_->reset();
+  logInput(marble_maze::SimInput::RESET);
   publishNow();
   return "";
 }
@@ -272,23 +308,25 @@ std::string MazeNode::reset() {
 std::string MazeNode::pause() {
   if (session_->paused()) return "";
   session_->pause();
+  logInput(marble_maze::SimInput::PAUSE);
   last_frozen_ = ros::Time();
   // Steps taken while paused (`step`) follow on from here in simulated time.
   if (settings_.lockstep <= 0 && !settings_.own_clock && clock_.anchored())
-    clock_.anchor(std::max(ros::Time::now(), stampNow()), simTime());
+    reanchor(std::max(ros::Time::now(), stampNow()), simTime());
   return "";
 }
 
 std::string MazeNode::resume() {
   if (!session_->paused()) return "";
   session_->resume();
+  logInput(marble_maze::SimInput::RESUME);
   // The simulation takes up where it stopped: the paused time is not simulated. Steps taken
   // while paused put it ahead of ROS time, which then catches up.
   if (settings_.own_clock) {
     free_run_start_ = ros::WallTime::now();
     free_run_start_sim_ = simTime();
   } else if (settings_.lockstep <= 0 && clock_.anchored()) {
-    clock_.anchor(std::max(ros::Time::now(), stampNow()), simTime());
+    reanchor(std::max(ros::Time::now(), stampNow()), simTime());
   }
   return "";
 }
@@ -311,19 +349,34 @@ std::string MazeNode::place(const mm::Vec3& position, const mm::Vec3& velocity,
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
+  marble_maze::SimInput input;
+  input.position = tf2::toMsg(position);
+  tf2::toMsg(velocity, input.velocity);
+  tf2::toMsg(spin, input.angular_velocity);
+  logInput(marble_maze::SimInput::PLACE, input);
   publishNow();
   return "";
 }
 
 std::string MazeNode::load(const std::string& maze) {
+  mm::Scene scene;
   try {
-    session_->load(sceneFor(maze, settings_));
+    scene = sceneFor(maze, settings_);
+    session_->load(scene);
   } catch (const mm::MazeFileError& e) {
     return e.what();
   } catch (const mm::ParamError& e) {
     return e.what();
   }
   settings_.maze = maze;
+  maze_text_ = scene.text;
+  maze_source_ = scene.source;
+  log_->scene(*session_, maze_text_, maze_source_);
+  marble_maze::SimInput input;
+  input.maze_text = maze_text_;
+  input.maze_source = maze_source_;
+  input.params = mm::paramsText(session_->simulation().params());
+  logInput(marble_maze::SimInput::LOAD, input);
   out_->publishScene(session_->simulation(), true);
   reconfigure_->publishUpdate();
   writeBack(pnh_, settings_, session_->simulation().params());
@@ -360,6 +413,9 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
     free_run_start_sim_ = simTime();
   }
   writeBack(pnh_, settings_, session_->simulation().params());
+  marble_maze::SimInput input;
+  input.params = mm::paramsText(session_->simulation().params());
+  logInput(marble_maze::SimInput::PARAMS, input);
   return "";
 }
 

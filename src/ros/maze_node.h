@@ -19,6 +19,7 @@
 #include "marble_maze/session.h"
 #include "node_settings.h"
 #include "reconfigure.h"
+#include "session_log.h"
 #include "sim_clock.h"
 #include "sim_services.h"
 #include "state_output.h"
@@ -43,6 +44,11 @@ class MazeNode {
   double step() const { return session_->simulation().params().step; }
   void publishClock();
   void updateHealth();
+  /// Ties simulated time `sim_time` to ROS time `origin`, and says so on `inputs`.
+  void reanchor(const ros::Time& origin, double sim_time);
+  /// An input of a service, at the current step, and the state after it.
+  void logInput(std::uint8_t kind, marble_maze::SimInput input = marble_maze::SimInput());
+  std::uint64_t stepsPer(double seconds) const;
 
   // Inputs and services.
   void onCommand(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind, double roll,
@@ -66,11 +72,13 @@ class MazeNode {
   std::unique_ptr<SimServices> services_;
   std::unique_ptr<Reconfigure> reconfigure_;
   std::unique_ptr<Health> health_;
+  std::unique_ptr<SessionLog> log_;
+  std::string maze_text_, maze_source_;  // the maze file's text, for the scene on `scene`
+  bool snapshotted_ = false;
   ros::Publisher clock_pub_;
   ros::Timer timer_;
   ros::WallTimer free_run_;
 
-  double last_state_time_ = -1, last_marker_time_ = -1;  // s of simulated time published
   ros::Time last_state_stamp_, last_marker_stamp_;
   bool state_pending_ = false;  // a state was asked for at an instant already published
   ros::Time last_now_;          // the latest ROS time seen (a clock going back is followed)

@@ -19,6 +19,8 @@ class SimClock {
   /// Ties simulated time `sim_time` to ROS time `now`.
   void anchor(const ros::Time& now, double sim_time);
   bool anchored() const { return anchored_; }
+  ros::Time origin() const { return origin_; }
+  double anchorTime() const { return anchor_sim_; }
   /// Simulated time due at ROS time `now` (following ROS time).
   double due(const ros::Time& now) const { return anchor_sim_ + (now - origin_).toSec(); }
 

@@ -5,7 +5,9 @@
 // it does on `~status` (latched: playing, reached the goal, fell in, no route). When the marble
 // is reset after a hole or the goal it plans and plays again; where no route exists it says so,
 // levels the board and stops playing until the marble is reset or a new maze comes.
-// Parameters: ~rate (Hz, 55), ~max_speed (m/s along the route, 0.1).
+// Parameters: ~rate (Hz, 55), ~max_speed (m/s along the route, 0.1), ~start_delay (s of wall
+// time before it first steers, 1: a new publisher's first messages are lost to subscribers that
+// have not connected yet, a recorder among them).
 #include <ros/ros.h>
 #include <std_msgs/String.h>
 #include <visualization_msgs/Marker.h>
@@ -29,6 +31,7 @@ class AutopilotNode {
   AutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
     rate_ = pnh.param("rate", 55.0);
     max_speed_ = pnh.param("max_speed", 0.1);
+    start_after_ = ros::WallTime::now() + ros::WallDuration(pnh.param("start_delay", 1.0));
     if (!(rate_ > 0 && rate_ <= 1000))
       throw std::runtime_error(pnh.resolveName("rate") + ": expected 0 < rate <= 1000 Hz");
     if (!(max_speed_ > 0 && max_speed_ <= 10))
@@ -64,7 +67,7 @@ class AutopilotNode {
   void onState(const mm::MarbleState::ConstPtr& msg) { state_ = msg; }
 
   void onTimer(const ros::TimerEvent&) {
-    if (!pilot_ || !state_) return;
+    if (!pilot_ || !state_ || ros::WallTime::now() < start_after_) return;
     const mm::MarbleState& s = *state_;
     const bool finished = s.in_hole || s.at_goal || s.off_board;
     if (finished) {
@@ -158,6 +161,7 @@ class AutopilotNode {
   }
 
   double rate_ = 55, max_speed_ = 0.1;
+  ros::WallTime start_after_;
   mm::Scene scene_;
   std::unique_ptr<mm::Autopilot> pilot_;
   std::string board_frame_ = "board";

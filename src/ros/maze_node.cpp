@@ -89,7 +89,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
 
   if (settings_.own_clock || settings_.lockstep > 0) {
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
-    reanchor(ros::Time(0), 0);  // ROS time is simulated time
+    reanchor(ros::Time(0));  // ROS time is simulated time
     publishNow();
   }
   if (settings_.own_clock) {
@@ -103,15 +103,15 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
 // --- Time ----------------------------------------------------------------------------------------
 
 ros::Time MazeNode::stampNow() const {
-  return clock_.stampOf(simTime());
+  return clock_.stampOfStep(session_->steps());
 }
 
 std::uint64_t MazeNode::stepsPer(double seconds) const {
   return std::max<std::uint64_t>(1, std::llround(seconds / step()));
 }
 
-void MazeNode::reanchor(const ros::Time& origin, double sim_time) {
-  clock_.anchor(origin, sim_time);
+void MazeNode::reanchor(const ros::Time& origin) {
+  clock_.anchor(origin, session_->steps(), simTime(), stepNs());
   log_->anchor(clock_, session_->steps(), stampNow());
   if (!snapshotted_) {  // the first: a bag started now has where the session stands
     snapshotted_ = true;
@@ -142,17 +142,24 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
     return;
   }
   if (!clock_.anchored()) {  // the first tick of a running clock
-    reanchor(now, simTime());
+    // Steps on a grid of ROS time (multiples of the step), so that two nodes given the same
+    // stamped commands apply them at the same instants: `rosbag play` of a session's commands
+    // into a fresh node then follows the session.
+    reanchor(onGrid(now, stepNs()));
     last_now_ = now;
     publishNow();
     return;
   }
   if (now < last_now_) {
-    ROS_WARN("ROS time went back by %.3f s (a bag looping? a restarted clock?); following it",
-             (last_now_ - now).toSec());
-    reanchor(now, simTime());
+    ROS_WARN(
+        "ROS time went back by %.3f s (a bag looping? a restarted clock?): following it, the "
+        "marble back on the start",
+        (last_now_ - now).toSec());
+    // A bag looping plays its session again from the start: so does the simulation.
+    reanchor(onGrid(now, stepNs()));
     out_->clearStamps();
-    last_state_stamp_ = last_marker_stamp_ = ros::Time();
+    session_->reset();
+    logInput(marble_maze::SimInput::RESET);
     last_now_ = now;
     publishNow();
     return;
@@ -167,14 +174,16 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
     updateHealth();
     return;
   }
-  auto due = static_cast<std::int64_t>(std::floor((clock_.due(now) - simTime()) / step() + 1e-9));
+  auto due = static_cast<std::int64_t>(clock_.stepsDue(now)) -
+             static_cast<std::int64_t>(session_->steps());
   const auto most =
       static_cast<std::int64_t>(std::max(kMaxCatchUp, 5.0 / settings_.update_rate) / step());
   if (due > most) {
     ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
                       (due - most) * step());
     skipped_steps_ += due - most;
-    reanchor(now, simTime() + most * step());
+    // The steps taken now end at now's step on the grid.
+    reanchor(ros::Time().fromNSec(onGrid(now, stepNs()).toNSec() - most * stepNs()));
     due = most;
   }
   if (due > 0) runSteps(static_cast<std::uint64_t>(due));
@@ -229,26 +238,11 @@ void MazeNode::runSteps(std::uint64_t count) {
 }
 
 void MazeNode::publishDue(bool force) {
-  // States and markers at their rates of simulated time, whatever the mode: at the steps whose
-  // count is a multiple of the period, so that a replay from a snapshot publishes at the same
-  // steps as the session it replays. Each stamp is later than the one before: a state asked for
-  // at an instant already published (a reset just after a step) goes out with the next step.
   // Paused on ROS time, the frozen state is stamped with the ROS time that passes.
-  const std::uint64_t n = session_->steps();
   ros::Time stamp = stampNow();
   if (session_->paused() && !settings_.own_clock && settings_.lockstep <= 0)
     stamp = std::max(ros::Time::now(), stamp);
-  if (force || state_pending_ || n % stepsPer(1.0 / settings_.publish_rate) == 0) {
-    state_pending_ = stamp <= last_state_stamp_;
-    if (!state_pending_) {
-      last_state_stamp_ = stamp;
-      out_->publishState(session_->simulation(), stamp);
-    }
-  }
-  if ((force || n % stepsPer(1.0 / settings_.marker_rate) == 0) && stamp > last_marker_stamp_) {
-    last_marker_stamp_ = stamp;
-    out_->publishMarkers(session_->simulation(), stamp);
-  }
+  out_->publishDue(*session_, stamp, stepNs(), force);
 }
 
 void MazeNode::publishNow() {
@@ -288,7 +282,7 @@ void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, dou
   // Paused, time stands still: a command acts at the next step taken (by `step`, or on resume),
   // so that an agent stepping the simulation drives it step by step.
   const std::uint64_t at =
-      clock_.anchored() && !session_->paused() ? clock_.stepAt(stamp, now, simTime(), step()) : now;
+      clock_.anchored() && !session_->paused() ? clock_.stepAt(stamp, now) : now;
   if (!session_->command({at, kind, roll, pitch}))
     ROS_WARN_THROTTLE(1.0,
                       "tilt commands stamped far ahead fill the queue; dropped the one furthest "
@@ -312,7 +306,7 @@ std::string MazeNode::pause() {
   last_frozen_ = ros::Time();
   // Steps taken while paused (`step`) follow on from here in simulated time.
   if (settings_.lockstep <= 0 && !settings_.own_clock && clock_.anchored())
-    reanchor(std::max(ros::Time::now(), stampNow()), simTime());
+    reanchor(onGrid(std::max(ros::Time::now(), stampNow()), stepNs(), true));
   return "";
 }
 
@@ -326,7 +320,7 @@ std::string MazeNode::resume() {
     free_run_start_ = ros::WallTime::now();
     free_run_start_sim_ = simTime();
   } else if (settings_.lockstep <= 0 && clock_.anchored()) {
-    reanchor(std::max(ros::Time::now(), stampNow()), simTime());
+    reanchor(onGrid(std::max(ros::Time::now(), stampNow()), stepNs(), true));
   }
   return "";
 }
@@ -403,7 +397,9 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
         settings_.marker_rate > per_second * (1 + 1e-9))
       return "step: " + text(params.step) + " s makes fewer steps a second than ~publish_rate or " +
              "~marker_rate asks for";
+    const ros::Time stamp = stampNow();
     session_->setParams(params);
+    if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length
   } catch (const mm::ParamError& e) {
     return e.what();
   }

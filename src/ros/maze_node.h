@@ -12,6 +12,7 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -44,8 +45,9 @@ class MazeNode {
   double step() const { return session_->simulation().params().step; }
   void publishClock();
   void updateHealth();
-  /// Ties simulated time `sim_time` to ROS time `origin`, and says so on `inputs`.
-  void reanchor(const ros::Time& origin, double sim_time);
+  /// Ties the current step to ROS time `origin`, and says so on `inputs`.
+  void reanchor(const ros::Time& origin);
+  std::int64_t stepNs() const { return std::llround(step() * 1e9); }
   /// An input of a service, at the current step, and the state after it.
   void logInput(std::uint8_t kind, marble_maze::SimInput input = marble_maze::SimInput());
   std::uint64_t stepsPer(double seconds) const;
@@ -79,10 +81,8 @@ class MazeNode {
   ros::Timer timer_;
   ros::WallTimer free_run_;
 
-  ros::Time last_state_stamp_, last_marker_stamp_;
-  bool state_pending_ = false;  // a state was asked for at an instant already published
-  ros::Time last_now_;          // the latest ROS time seen (a clock going back is followed)
-  ros::Time last_frozen_;       // while paused: when the frozen state was last published
+  ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)
+  ros::Time last_frozen_;  // while paused: when the frozen state was last published
   std::uint64_t skipped_steps_ = 0;
   ros::WallTime free_run_start_;
   double free_run_start_sim_ = 0;

@@ -53,6 +53,7 @@ void SessionLog::snapshot(const mm::Session& session, const SimClock& clock,
   msg.state = session.save();
   msg.params = mm::paramsText(session.simulation().params());
   msg.anchor_stamp = clock.origin();
+  msg.anchor_step = clock.anchorStep();
   msg.anchor_time = clock.anchorTime();
   snapshot_pub_.publish(msg);
 }

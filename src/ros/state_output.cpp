@@ -5,6 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "marble_maze/MazeEvent.h"
 #include "maze_description.h"
@@ -104,6 +105,33 @@ void StateOutput::publishMarkers(const mm::Simulation& sim, const ros::Time& sta
                   sim.board().roll(), sim.board().pitch(), settings_.board_frame);
   for (auto& m : live.markers) m.header.stamp = stamp;
   live_markers_pub_.publish(live);
+}
+
+void StateOutput::clearStamps() {
+  last_tf_stamp_ = last_state_stamp_ = last_marker_stamp_ = ros::Time();
+  state_pending_ = false;
+}
+
+void StateOutput::publishDue(const mm::Session& session, const ros::Time& stamp,
+                             std::int64_t step_ns, bool force) {
+  const mm::Simulation& sim = session.simulation();
+  // Whether a multiple of the period falls in this step: (stamp - step, stamp].
+  const auto due = [&](double rate) {
+    const std::int64_t period = std::max<std::int64_t>(1, std::llround(1e9 / rate));
+    const auto now = static_cast<std::int64_t>(stamp.toNSec());
+    return now / period != (now - step_ns) / period;
+  };
+  if (force || state_pending_ || due(settings_.publish_rate)) {
+    state_pending_ = stamp <= last_state_stamp_;
+    if (!state_pending_) {
+      last_state_stamp_ = stamp;
+      publishState(sim, stamp);
+    }
+  }
+  if ((force || due(settings_.marker_rate)) && stamp > last_marker_stamp_) {
+    last_marker_stamp_ = stamp;
+    publishMarkers(sim, stamp);
+  }
 }
 
 void StateOutput::publishEvent(const mm::Event& e, const ros::Time& stamp) {

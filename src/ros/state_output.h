@@ -10,6 +10,7 @@
 #include <string>
 
 #include "marble_maze/MarbleState.h"
+#include "marble_maze/session.h"
 #include "marble_maze/simulation.h"
 #include "node_settings.h"
 
@@ -29,15 +30,25 @@ class StateOutput {
   void publishState(const marble_maze::Simulation& sim, const ros::Time& stamp);
   void publishMarkers(const marble_maze::Simulation& sim, const ros::Time& stamp);
   void publishEvent(const marble_maze::Event& event, const ros::Time& stamp);
-  /// ROS time went back: tf stamps may start again from there.
-  void clearStamps() { last_tf_stamp_ = ros::Time(); }
+  /// The state and the markers when due, at `stamp` (the step's, steps lasting `step_ns`): at
+  /// the first step at or after each multiple of their period in ROS time (`force`: now), each
+  /// stamp later than the one before. A state asked for at an instant already published (a reset
+  /// just after a step) goes out with the next step. The same steps publish in a session and in its
+  /// replay.
+  void publishDue(const marble_maze::Session& session, const ros::Time& stamp, std::int64_t step_ns,
+                  bool force);
+  /// Whether marble_state has a subscriber connected.
+  bool stateSubscribed() const { return state_pub_.getNumSubscribers() > 0; }
+  /// ROS time went back: stamps may start again from there.
+  void clearStamps();
 
  private:
   NodeSettings settings_;
   ros::Publisher state_pub_, odom_pub_, event_pub_, maze_pub_, maze_markers_pub_,
       marble_marker_pub_, live_markers_pub_;
   tf2_ros::TransformBroadcaster tf_;
-  ros::Time last_tf_stamp_;
+  ros::Time last_tf_stamp_, last_state_stamp_, last_marker_stamp_;
+  bool state_pending_ = false;
   std::deque<marble_maze::Vec3> trail_;  // the marble's recent board-frame positions
 };
 

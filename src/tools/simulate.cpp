@@ -1,14 +1,17 @@
 // simulate: the headless runner. Runs the physics core without ROS on a maze, under a constant
 // tilt or a tilt program, and writes the trajectory as CSV and the events.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "../ros/recording.h"
 #include "marble_maze/maze_file.h"
 #include "marble_maze/simulation.h"
 #include "marble_maze/tilt_schedule.h"
@@ -31,6 +34,8 @@ struct Options {
   std::string events;  // events CSV
   int every = 1;
   bool quiet = false;
+  std::string bag;     // a recorded session to re-simulate
+  bool check = false;  // and compare with its recorded marble_state
 };
 
 void printHelp() {
@@ -48,6 +53,11 @@ Runs the marble_maze physics without ROS and reports what happened.
   --events FILE        write the events as CSV
   --every N            write every Nth step to the trajectory; default 1
   --quiet              no summary on standard output
+  --bag FILE           re-simulate a session recorded by record.launch, from its first snapshot,
+                       with its inputs at their steps (no ROS master needed); --set re-runs it
+                       under other physics; --duration is ignored
+  --check              with --bag: compare with the bag's recorded marble_state, bit for bit;
+                       exit 1 at the first difference, printing its time and size
   --help               this text
 
 The board starts at the tilt program's first value unless initial_roll or initial_pitch is set.
@@ -85,6 +95,10 @@ Options parseOptions(int argc, char** argv) {
       o.quiet = true;
       continue;
     }
+    if (flag == "--check") {
+      o.check = true;
+      continue;
+    }
     if (i + 1 >= argc)
       throw UsageError(flag +
                        (flag.rfind("--", 0) == 0 ? ": needs a value" : ": unknown argument"));
@@ -114,6 +128,8 @@ Options parseOptions(int argc, char** argv) {
         throw UsageError("--duration: expected 0..1e6 seconds, got '" + value + "'");
     } else if (flag == "--out") {
       o.out = value;
+    } else if (flag == "--bag") {
+      o.bag = value;
     } else if (flag == "--events") {
       o.events = value;
     } else if (flag == "--every") {
@@ -169,7 +185,95 @@ std::string describe(const mm::Event& e) {
   return text;
 }
 
+/// The marble and the tilt at an instant: what a recorded state shows.
+struct Shown {
+  mm::Marble marble;
+  double roll, pitch;
+};
+
+Shown shown(const mm::Simulation& sim) {
+  return {sim.marble(), sim.board().roll(), sim.board().pitch()};
+}
+
+/// How a recorded state differs from what the simulation shows ("" when it is exactly it).
+std::string differs(const marble_maze::MarbleState& recorded, const Shown& now) {
+  const mm::Marble& m = now.marble;
+  const auto vec = [](const auto& v) { return mm::Vec3(v.x, v.y, v.z); };
+  const std::pair<const char*, double> gaps[] = {
+      {"position", (vec(recorded.position) - m.position).norm()},
+      {"velocity", (vec(recorded.velocity) - m.velocity).norm()},
+      {"angular_velocity", (vec(recorded.angular_velocity) - m.angular_velocity).norm()},
+      {"roll", std::abs(recorded.roll - now.roll)},
+      {"pitch", std::abs(recorded.pitch - now.pitch)}};
+  for (const auto& [field, gap] : gaps)
+    if (gap != 0) {
+      char text[128];
+      std::snprintf(text, sizeof text, "%s differs by %.3g", field, gap);
+      return text;
+    }
+  return "";
+}
+
+/// simulate --bag: the recorded session again, and with --check the comparison.
+int rerun(const Options& o) {
+  marble_maze_ros::Recording recording;
+  std::unique_ptr<marble_maze_ros::Replayer> replay;
+  try {
+    recording = marble_maze_ros::readRecording(o.bag);
+    replay = std::make_unique<marble_maze_ros::Replayer>(recording, o.sets);
+  } catch (const mm::MazeFileError& e) {
+    throw UsageError(std::string("--bag: ") + e.what());
+  } catch (const mm::ParamError& e) {
+    throw UsageError(std::string("--set ") + e.what());
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--bag: ") + e.what());
+  }
+  std::unique_ptr<std::ofstream> out_file;
+  std::ostream* out = openOutput(o.out, &out_file);
+  const mm::Simulation& sim = replay->session().simulation();
+  if (out) {
+    *out << "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
+    writeRow(*out, sim);
+  }
+  const auto& states = recording.states;
+  std::size_t next = 0, matched = 0, steps = 0;
+  while (next < states.size() && states[next].header.stamp < replay->stamp()) ++next;
+  const ros::Time end = replay->end();
+  for (;;) {
+    // A state recorded at this step's stamp shows the simulation before or after the inputs
+    // that came between the steps (a reset shown at once).
+    const Shown before = shown(sim);
+    replay->applyDue();
+    const ros::Time stamp = replay->stamp();
+    for (; next < states.size() && states[next].header.stamp <= stamp; ++next) {
+      if (states[next].header.stamp < stamp) continue;  // published while paused: not a step's
+      ++matched;
+      const std::string gap_before = differs(states[next], before);
+      const std::string gap = differs(states[next], shown(sim));
+      if (o.check && !gap_before.empty() && !gap.empty()) {
+        std::cerr << "simulate: --check: at t=" << std::setprecision(17) << stamp.toSec()
+                  << " s (step " << sim.steps() << "): " << gap << "\n";
+        return 1;
+      }
+    }
+    if (stamp >= end) break;
+    replay->step();
+    ++steps;
+    if (out && (steps % o.every == 0)) writeRow(*out, sim);
+  }
+  if (!o.quiet) {
+    std::ostream& s = (o.out == "-") ? std::cerr : std::cout;
+    s << "re-simulated " << steps << " steps of " << o.bag << " from its first snapshot (step "
+      << recording.snapshot.step << ")";
+    if (o.check) s << "; " << matched << " recorded states compared: all identical";
+    s << "\n";
+  }
+  return 0;
+}
+
 int run(const Options& o) {
+  if (!o.bag.empty()) return rerun(o);
+  if (o.check) throw UsageError("--check: only with --bag");
   mm::Scene scene;
   bool initial_tilt_set = false;
   try {

@@ -12,16 +12,17 @@
 namespace marble_maze_ros {
 namespace {
 
-TEST(SimClock, StampsFollowTheAnchorAndCommandsTakeTheNextStepAtOrAfterTheirStamp) {
+TEST(SimClock, StepsHaveExactStampsAndCommandsTakeTheFirstStepAtOrAfterTheirStamp) {
   SimClock clock;
-  clock.anchor(ros::Time(100.0), 2.0);  // simulated 2 s at ROS 100 s
-  EXPECT_EQ(clock.stampOf(2.5), ros::Time(100.5));
-  const double step = 0.001;
-  // Now: step 2000 at 2 s. A stamp 2.5 ms ahead: step 2003 is the first to start at or after it.
-  EXPECT_EQ(clock.stepAt(ros::Time(100.0025), 2000, 2.0, step), 2003u);
-  EXPECT_EQ(clock.stepAt(ros::Time(100.003), 2000, 2.0, step), 2003u);  // exactly a step's start
-  EXPECT_EQ(clock.stepAt(ros::Time(99.0), 2000, 2.0, step), 2000u);     // past: the next step
-  EXPECT_NEAR(clock.due(ros::Time(101.0)), 3.0, 1e-9);
+  clock.anchor(ros::Time(100.0), 2000, 2.0, 1000000);  // step 2000 starts at ROS 100 s; 1 ms steps
+  EXPECT_EQ(clock.stampOfStep(2500), ros::Time(100.5));
+  EXPECT_EQ(clock.stampOfStep(2000 + 1000000).toNSec(), ros::Time(1100.0).toNSec());  // exact
+  EXPECT_EQ(clock.stepAt(ros::Time(100.0025), 2000), 2003u);
+  EXPECT_EQ(clock.stepAt(ros::Time(100.003), 2000), 2003u);  // exactly a step's start
+  EXPECT_EQ(clock.stepAt(ros::Time(99.0), 2000), 2000u);     // past: the next step
+  EXPECT_EQ(clock.stepsDue(ros::Time(101.0005)), 3000u);
+  EXPECT_EQ(onGrid(ros::Time(5, 1234567), 1000000).toNSec(), ros::Time(5, 1000000).toNSec());
+  EXPECT_EQ(onGrid(ros::Time(5, 1234567), 1000000, true).toNSec(), ros::Time(5, 2000000).toNSec());
 }
 
 TEST(MazeDescription, DescribesTheMazeAndReadsBackTheSameMaze) {

@@ -1,0 +1,146 @@
+#include "recording.h"
+
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "marble_maze/maze_file.h"
+
+namespace marble_maze_ros {
+namespace mm = marble_maze;
+
+Recording readRecording(const std::string& path) {
+  rosbag::Bag bag;
+  try {
+    bag.open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  Recording r;
+  std::vector<marble_maze::SceneDescription> scenes;  // with the snapshots seen before each
+  std::vector<std::size_t> scene_after;
+  std::vector<marble_maze::SimSnapshot> snapshots;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+    if (auto scene = m.instantiate<marble_maze::SceneDescription>()) {
+      scenes.push_back(*scene);
+      scene_after.push_back(snapshots.size());
+    } else if (auto snapshot = m.instantiate<marble_maze::SimSnapshot>()) {
+      snapshots.push_back(*snapshot);
+    } else if (auto input = m.instantiate<marble_maze::SimInput>()) {
+      r.inputs.push_back(*input);
+    } else if (auto state = m.instantiate<marble_maze::MarbleState>()) {
+      r.states.push_back(*state);
+    }
+  }
+  std::stable_sort(r.inputs.begin(), r.inputs.end(),
+                   [](const auto& a, const auto& b) { return a.index < b.index; });
+  for (std::size_t k = 1; k < r.inputs.size(); ++k)
+    if (r.inputs[k].index != r.inputs[k - 1].index + 1)
+      throw std::runtime_error(path + ": inputs " + std::to_string(r.inputs[k - 1].index + 1) +
+                               " to " + std::to_string(r.inputs[k].index - 1) + " are missing");
+  // A recorder that started late missed the inputs made before it subscribed: the replay starts
+  // from the first snapshot that holds them all, with the scene recorded before it.
+  const std::uint64_t first_input = r.inputs.empty() ? 0 : r.inputs.front().index;
+  std::size_t chosen = snapshots.size();
+  for (std::size_t k = 0; k < snapshots.size() && chosen == snapshots.size(); ++k)
+    if (snapshots[k].inputs >= first_input) chosen = k;
+  if (chosen == snapshots.size())
+    throw std::runtime_error(path +
+                             ": no marble_maze/SimSnapshot (snapshot) that the recorded "
+                             "inputs follow on from");
+  std::size_t scene = scenes.size();
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    if (scene_after[k] <= chosen) scene = k;
+  if (scene == scenes.size())
+    throw std::runtime_error(path +
+                             ": no marble_maze/SceneDescription (scene) before the snapshot");
+  r.scene = scenes[scene];
+  r.snapshot = snapshots[chosen];
+  const std::uint64_t held = r.snapshot.inputs;
+  r.inputs.erase(std::remove_if(r.inputs.begin(), r.inputs.end(),
+                                [held](const marble_maze::SimInput& i) { return i.index < held; }),
+                 r.inputs.end());
+  std::stable_sort(r.states.begin(), r.states.end(),
+                   [](const auto& a, const auto& b) { return a.header.stamp < b.header.stamp; });
+  return r;
+}
+
+mm::Params Replayer::paramsOf(const std::string& text) const {
+  mm::Params params = mm::paramsFromText(text);
+  for (const auto& [key, value] : overrides_) mm::setParam(params, key, value);
+  mm::validate(params);
+  return params;
+}
+
+Replayer::Replayer(const Recording& recording, const Overrides& overrides)
+    : recording_(recording), overrides_(overrides) {
+  mm::Scene scene = mm::parseScene(recording.scene.maze_text, recording.scene.maze_source);
+  scene.params = paramsOf(recording.snapshot.params);
+  mm::SessionSettings settings;
+  settings.tilt_timeout = recording.scene.tilt_timeout;
+  settings.rate_timeout = recording.scene.rate_timeout;
+  settings.auto_reset = recording.scene.auto_reset;
+  session_ = std::make_unique<mm::Session>(scene, settings);
+  session_->restore(recording.snapshot.state);
+  clock_.anchor(recording.snapshot.anchor_stamp, recording.snapshot.anchor_step,
+                recording.snapshot.anchor_time, stepNs());
+}
+
+std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
+  std::vector<const marble_maze::SimInput*> applied;
+  const auto& inputs = recording_.inputs;
+  while (next_ < inputs.size() && inputs[next_].step <= session_->steps()) {
+    const marble_maze::SimInput& in = inputs[next_++];
+    using K = marble_maze::SimInput;
+    switch (in.kind) {
+      case K::TILT:
+      case K::TILT_RATE:
+        session_->command(
+            {session_->steps(),
+             in.kind == K::TILT ? mm::TiltCommand::Kind::Angles : mm::TiltCommand::Kind::Rates,
+             in.roll, in.pitch});
+        break;
+      case K::RESET:
+        session_->reset();
+        break;
+      case K::PAUSE:
+        session_->pause();
+        break;
+      case K::RESUME:
+        session_->resume();
+        break;
+      case K::PLACE:
+        session_->place({in.position.x, in.position.y, in.position.z},
+                        {in.velocity.x, in.velocity.y, in.velocity.z},
+                        {in.angular_velocity.x, in.angular_velocity.y, in.angular_velocity.z});
+        break;
+      case K::LOAD: {
+        mm::Scene scene = mm::parseScene(in.maze_text, in.maze_source);
+        scene.params = paramsOf(in.params);
+        session_->load(scene);
+        break;
+      }
+      case K::PARAMS:
+        session_->setParams(paramsOf(in.params));
+        break;
+      case K::ANCHOR:
+        clock_.anchor(in.anchor_stamp, in.step, in.anchor_time, stepNs());
+        break;
+      default:
+        throw std::runtime_error("inputs: unknown kind " + std::to_string(in.kind));
+    }
+    applied.push_back(&in);
+  }
+  return applied;
+}
+
+ros::Time Replayer::end() const {
+  ros::Time end;
+  if (!recording_.states.empty()) end = recording_.states.back().header.stamp;
+  if (!recording_.inputs.empty()) end = std::max(end, recording_.inputs.back().header.stamp);
+  return end;
+}
+
+}  // namespace marble_maze_ros

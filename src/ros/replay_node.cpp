@@ -1,0 +1,107 @@
+// replay: plays a recorded session (record.launch) live again, from the bag's first snapshot,
+// with the recorded inputs applied at their steps: it publishes tf, markers, marble_state and
+// events as the original did, stamped as the original was, and /clock (so run the rest of the
+// graph, RViz too, on /use_sim_time). The states are the original's bit for bit at any rate.
+// It reads the bag itself rather than taking its topics from `rosbag play`, whose transport
+// gives no order between /clock and the inputs. Parameters: ~bag (the file), ~rate (times real
+// time, 1), ~wait (true: start when marble_state has a subscriber, so that a recorder of the
+// replay misses nothing; false); ~world_frame, ~board_frame, ~marble_frame as the node's.
+#include <ros/ros.h>
+#include <rosgraph_msgs/Clock.h>
+
+#include <memory>
+
+#include "recording.h"
+#include "state_output.h"
+
+namespace {
+namespace mm = marble_maze;
+using marble_maze_ros::NodeSettings;
+
+class ReplayNode {
+ public:
+  ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+    std::string bag;
+    if (!pnh.getParam("bag", bag))
+      throw std::runtime_error(pnh.resolveName("bag") + ": required: a bag of record.launch");
+    rate_ = pnh.param("rate", 1.0);
+    wait_ = pnh.param("wait", false);
+    if (!(rate_ > 0 && rate_ <= 1e6))
+      throw std::runtime_error(pnh.resolveName("rate") + ": expected 0 < rate <= 1e6");
+    recording_ = marble_maze_ros::readRecording(bag);
+    replay_ = std::make_unique<marble_maze_ros::Replayer>(recording_);
+    NodeSettings settings;
+    settings.publish_rate = recording_.scene.publish_rate;
+    settings.marker_rate = recording_.scene.marker_rate;
+    settings.world_frame = pnh.param<std::string>("world_frame", settings.world_frame);
+    settings.board_frame = pnh.param<std::string>("board_frame", settings.board_frame);
+    settings.marble_frame = pnh.param<std::string>("marble_frame", settings.marble_frame);
+    out_ = std::make_unique<marble_maze_ros::StateOutput>(nh, settings);
+    clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    out_->publishScene(replay_->session().simulation(), false);
+    ROS_INFO("replay: %s from simulated %.3f s to %.3f s, at %g times real time", bag.c_str(),
+             replay_->session().simulation().time(),
+             replay_->session().simulation().time() + (replay_->end() - replay_->stamp()).toSec(),
+             rate_);
+    start_wall_ = ros::WallTime::now();
+    start_sim_ = replay_->session().simulation().time();
+    timer_ = nh.createWallTimer(ros::WallDuration(0.001), &ReplayNode::onTimer, this);
+  }
+
+ private:
+  void onTimer(const ros::WallTimerEvent&) {
+    if (wait_) {
+      if (!out_->stateSubscribed()) return;
+      wait_ = false;
+      start_wall_ = ros::WallTime::now();
+    }
+    const mm::Session& session = replay_->session();
+    const double target = start_sim_ + rate_ * (ros::WallTime::now() - start_wall_).toSec();
+    while (session.simulation().time() < target) {
+      bool shown = false;  // a reset, a place or a load is shown at once, as the original did
+      for (const marble_maze::SimInput* in : replay_->applyDue()) {
+        if (in->kind == marble_maze::SimInput::LOAD) out_->publishScene(session.simulation(), true);
+        shown = shown || in->kind == marble_maze::SimInput::RESET ||
+                in->kind == marble_maze::SimInput::PLACE || in->kind == marble_maze::SimInput::LOAD;
+      }
+      if (shown) out_->publishDue(session, replay_->stamp(), replay_->stepNs(), true);
+      if (replay_->stamp() >= replay_->end()) {
+        ROS_INFO("replay: the recording ends at %.3f s", replay_->stamp().toSec());
+        timer_.stop();
+        break;
+      }
+      replay_->step();
+      for (const mm::Event& e : session.events())
+        out_->publishEvent(e, replay_->clock().stampOf(e.time));
+      out_->publishDue(session, replay_->stamp(), replay_->stepNs(), false);
+    }
+    rosgraph_msgs::Clock clock;
+    clock.clock = replay_->stamp();
+    clock_pub_.publish(clock);
+  }
+
+  double rate_ = 1;
+  bool wait_ = false;
+  marble_maze_ros::Recording recording_;
+  std::unique_ptr<marble_maze_ros::Replayer> replay_;
+  std::unique_ptr<marble_maze_ros::StateOutput> out_;
+  ros::Publisher clock_pub_;
+  ros::WallTimer timer_;
+  ros::WallTime start_wall_;
+  double start_sim_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "replay");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    ReplayNode node(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s", e.what());
+    return 1;
+  }
+  return 0;
+}

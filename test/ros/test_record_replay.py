@@ -1,0 +1,246 @@
+"""Record and replay, end to end, as a user runs them (record.launch, replay.launch, simulate --bag,
+rosbag play), each on a master of its own:
+
+  1. record about 18 s of a session the autopilot plays, the recorder started 3 s after the node,
+     with a reset and a pause (and 100 steps taken while paused) in it;
+  2. re-simulate it offline (simulate --bag --check): every recorded state bit for bit;
+  3. replay it live with replay.launch at 1 and 4 times real time, recording what it publishes:
+     every state at the original's stamps is the original's bit for bit; the only recorded states
+     without a counterpart are those published while paused (stamped with the time that passed);
+  4. record a session from the node's start, play its tilt commands with plain
+     `rosbag play --clock` into a fresh node: within 1 mm of the original over the whole run;
+  5. play that bag twice in a loop (-l): the node starts over when time jumps back, and a tf
+     listener sees no TF_REPEATED_DATA or TF_OLD_DATA.
+
+Plain unittest in the workspace given by MARBLE_MAZE_WS: python3 test/ros/test_record_replay.py;
+with --gtest_output=xml:FILE it writes JUnit XML for catkin. About 2 minutes.
+"""
+import math
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rosbag
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+WS = os.environ.get("MARBLE_MAZE_WS", os.path.join(HERE, "..", "..", "..", "main.ws"))
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+class Master:
+    """Processes on a ROS master of their own."""
+
+    def __init__(self):
+        self.env = dict(os.environ)
+        self.env["ROS_MASTER_URI"] = "http://localhost:%d" % free_port()
+        self.env.pop("DISPLAY", None)
+        self.processes = []
+        self.core = self.start(["roscore", "-p", self.env["ROS_MASTER_URI"].rsplit(":", 1)[1]])
+        deadline = time.time() + 20
+        while time.time() < deadline and subprocess.run(
+                ["rosparam", "list"], env=self.env, capture_output=True).returncode != 0:
+            time.sleep(0.2)
+
+    def start(self, command, log=None):
+        p = subprocess.Popen(command, env=self.env, stdin=subprocess.DEVNULL,
+                             stdout=log or subprocess.DEVNULL, stderr=subprocess.STDOUT,
+                             start_new_session=True)
+        self.processes.append(p)
+        return p
+
+    def run(self, command):
+        return subprocess.run(command, env=self.env, capture_output=True, text=True, timeout=60)
+
+    def stop(self, p):
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGINT)
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+
+    def close(self):
+        for p in reversed(self.processes):
+            self.stop(p)
+
+
+def states(bag_path):
+    return [m for _, m, _ in rosbag.Bag(bag_path).read_messages()
+            if m._type == "marble_maze/MarbleState"]
+
+
+def inputs(bag_path):
+    return sorted((m for _, m, _ in rosbag.Bag(bag_path).read_messages()
+                   if m._type == "marble_maze/SimInput"), key=lambda m: m.index)
+
+
+def same(a, b):
+    return all(getattr(a, f) == getattr(b, f)
+               for f in ("position", "velocity", "angular_velocity", "roll", "pitch"))
+
+
+class RecordReplayTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="marble_maze_bags_")
+        cls.session = os.path.join(cls.dir, "session.bag")
+        master = Master()
+        try:
+            launch = master.start(["roslaunch", "marble_maze", "record.launch",
+                                   "bag:=" + cls.session, "autopilot:=true", "delay:=3"])
+            time.sleep(8)
+            master.run(["rosservice", "call", "/reset"])
+            time.sleep(3)
+            master.run(["rosservice", "call", "/pause"])
+            time.sleep(0.5)
+            master.run(["rosservice", "call", "/step", "100"])
+            time.sleep(0.5)
+            master.run(["rosservice", "call", "/resume"])
+            time.sleep(7)
+            master.stop(launch)
+        finally:
+            master.close()
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def test_1_offline_resimulation_is_bit_for_bit(self):
+        run = subprocess.run([os.path.join(WS, "devel", "lib", "marble_maze", "simulate"), "--bag",
+                              self.session, "--check"], capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("all identical", run.stdout)
+        compared = int(run.stdout.split("; ")[1].split()[0])
+        self.assertGreater(compared, 400)
+
+    def replay(self, rate):
+        out = os.path.join(self.dir, "replay_%g.bag" % rate)
+        master = Master()
+        try:
+            recorder = master.start(["rosbag", "record", "-O", out, "marble_state"])
+            time.sleep(1.5)
+            launch = master.start(["roslaunch", "marble_maze", "replay.launch",
+                                   "bag:=" + self.session, "rate:=%g" % rate, "wait:=true"])
+            time.sleep(16.0 / rate + 6)
+            master.stop(launch)
+            master.stop(recorder)
+        finally:
+            master.close()
+        return out
+
+    def check_replay(self, rate):
+        original = states(self.session)
+        replayed = {m.header.stamp: m for m in states(self.replay(rate))}
+        self.assertTrue(replayed, "the replay published nothing")
+        # While paused, the original published its frozen state stamped with the ROS time that
+        # passed: from the pause to the anchor that came with the resume.
+        log = inputs(self.session)
+        paused = []
+        for p in (i for i in log if i.kind == i.PAUSE):
+            resume = next(i for i in log if i.index > p.index and i.kind == i.RESUME)
+            anchor = next(i for i in log if i.index > resume.index and i.kind == i.ANCHOR)
+            paused.append((p.header.stamp, anchor.anchor_stamp))
+        first = min(replayed)
+        matched = 0
+        for m in original:
+            if m.header.stamp < first:
+                continue  # before the replay's first snapshot
+            twin = replayed.get(m.header.stamp)
+            if twin is None:
+                self.assertTrue(any(a <= m.header.stamp <= b for a, b in paused),
+                                "no replayed state at %s, outside a pause" % m.header.stamp)
+                continue
+            matched += 1
+            self.assertTrue(same(m, twin), "the replay differs at %s" % m.header.stamp)
+        print("replay at %g x: %d recorded states, bit for bit" % (rate, matched))
+        self.assertGreater(matched, 400)
+
+    def test_2_live_replay_at_real_time_is_bit_for_bit(self):
+        self.check_replay(1)
+
+    def test_3_live_replay_four_times_faster_is_bit_for_bit(self):
+        self.check_replay(4)
+
+    def test_4_plain_rosbag_play_follows_within_a_millimetre_and_a_loop_starts_over(self):
+        plain = os.path.join(self.dir, "plain.bag")
+        master = Master()
+        try:
+            launch = master.start(["roslaunch", "marble_maze", "record.launch", "bag:=" + plain,
+                                   "autopilot:=true", "autopilot_delay:=2"])
+            time.sleep(20)
+            master.stop(launch)
+        finally:
+            master.close()
+        # The commands alone, played with their clock into a node started the usual way.
+        out = os.path.join(self.dir, "plain_out.bag")
+        master = Master()
+        try:
+            master.run(["rosparam", "set", "/use_sim_time", "true"])
+            node = master.start(["roslaunch", "marble_maze", "sim.launch", "use_sim_time:=true",
+                                 "auto_reset:=2"])
+            recorder = master.start(["rosbag", "record", "-O", out, "marble_state"])
+            time.sleep(3)
+            player = master.start(["rosbag", "play", "--clock", plain, "--topics", "tilt"])
+            player.wait(timeout=60)
+            time.sleep(1)
+            master.stop(recorder)
+            master.stop(node)
+        finally:
+            master.close()
+        original = {m.header.stamp: m for m in states(plain)}
+        worst, compared = 0.0, 0
+        for m in states(out):
+            o = original.get(m.header.stamp)
+            if o is None:
+                continue
+            compared += 1
+            worst = max(worst, math.dist((o.position.x, o.position.y, o.position.z),
+                                         (m.position.x, m.position.y, m.position.z)))
+        print("plain rosbag play: %d states compared, %.3g m apart at most" % (compared, worst))
+        self.assertGreater(compared, 500)
+        self.assertLess(worst, 0.001)
+
+        # Twice in a loop: time jumps back, the node starts over, tf listeners see no error.
+        master = Master()
+        listener_log = open(os.path.join(self.dir, "listener.log"), "w")
+        try:
+            node = master.start(["roslaunch", "marble_maze", "sim.launch", "use_sim_time:=true",
+                                 "auto_reset:=2"])
+            master.run(["rosparam", "set", "/use_sim_time", "true"])
+            listener = master.start([sys.executable, os.path.join(HERE, "tf_listener.py")],
+                                    log=listener_log)
+            time.sleep(3)
+            player = master.start(["rosbag", "play", "--clock", "-l", plain, "--topics", "tilt"])
+            time.sleep(45)
+            master.stop(player)
+            master.stop(listener)
+            master.stop(node)
+        finally:
+            master.close()
+            listener_log.close()
+        with open(os.path.join(self.dir, "listener.log")) as f:
+            said = f.read()
+        self.assertIn("lookups", said)
+        self.assertGreater(int(said.split("lookups")[1].split()[0]), 100, said[-2000:])
+        for error in ("TF_REPEATED_DATA", "TF_OLD_DATA"):
+            self.assertNotIn(error, said)
+
+
+if __name__ == "__main__":
+    if any(arg.startswith("--gtest_output=xml:") for arg in sys.argv):
+        import rosunit
+        rosunit.unitrun("marble_maze", "test_record_replay", "__main__")
+    else:
+        unittest.main()

@@ -198,6 +198,10 @@ class SceneParser {
     }
     if (!std::isfinite(width) || width <= 0)
       fail(at(node), what + ": expected a positive width in metres, found " + node.Scalar());
+    // Slots from a micrometre to a kilometre: beyond, a board's extent loses the precision a
+    // marble on it needs, or overflows.
+    if (width < 1e-6 || width > 1e3)
+      fail(at(node), what + ": " + node.Scalar() + " m is out of range [1e-06, 1000] m");
     return width;
   }
 

@@ -82,6 +82,10 @@ void Session::place(const Vec3& position_in_board, const Vec3& velocity, const V
   if (!why.empty()) throw std::invalid_argument(why);
   if (!velocity.allFinite() || !spin.allFinite())
     throw std::invalid_argument("the velocity and the spin must be finite");
+  const Params& p = sim_.params();
+  if (velocity.norm() > 1e5 * p.marble_radius / p.step)
+    throw std::invalid_argument(
+        "velocity: more than 1e5 radii a step, which a step cannot resolve");
   sim_.placeMarble(position_in_board, velocity, spin);
   finished_ = false;
 }

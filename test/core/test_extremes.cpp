@@ -1,0 +1,135 @@
+// Numerical stability at the extremes a user can reach with --set and the maze format, each with
+// its bound: steps from 1e-6 to 0.05 s, e = 0 and e = 1, a marble in a corner at any tilt, and
+// the settings that cannot be simulated refused with a message naming the key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "marble_maze/maze_file.h"
+#include "marble_maze/simulation.h"
+#include "scenes.h"
+
+namespace marble_maze {
+namespace {
+
+using test::placed;
+
+constexpr double kRadius = 0.006;
+const IntegratorKind kAll[] = {IntegratorKind::SemiImplicitEuler, IntegratorKind::VelocityVerlet,
+                               IntegratorKind::RungeKutta4};
+
+Params with(IntegratorKind integrator, Model model, double step) {
+  Params p;
+  p.integrator = integrator;
+  p.model = model;
+  p.step = step;
+  return p;
+}
+
+std::string name(const Params& p) {
+  return getParam(p, "integrator") + " " + getParam(p, "model") + " step " + getParam(p, "step");
+}
+
+/// How far the marble is inside any tile now (0 when it overlaps none).
+double penetration(const Simulation& sim) {
+  std::vector<Contact> contacts;
+  findContacts(sim.maze(), sim.gridFrame(), sim.marble().position, kRadius, 0, &contacts);
+  double deepest = 0;
+  for (const Contact& c : contacts) deepest = std::max(deepest, c.depth);
+  return deepest;
+}
+
+TEST(Extremes,
+     EveryStepFromAMicrosecondToFiftyMillisecondsStaysFiniteOutOfTheTilesAndGainsNoEnergy) {
+  // A drop onto a 10 degree incline: flight, a bounce, then rolling or sliding down it.
+  for (IntegratorKind integrator : kAll)
+    for (Model model : {Model::Rolling, Model::Smooth})
+      for (double step : {1e-6, 1e-4, 1e-3, 1e-2, 0.05}) {
+        Params p = placed(with(integrator, model, step), {-0.5, 0, kRadius + 0.01});
+        p.initial_pitch = 0.17;
+        Simulation sim(test::flatFloor(120, 10, 0.01, p));
+        const double energy0 = sim.energy();
+        const int steps = static_cast<int>(std::min(20000.0, std::round(1.0 / step)));
+        double deepest = 0, rise = 0;
+        for (int i = 0; i < steps && sim.marble().phase == MarblePhase::Free; ++i) {
+          sim.step();
+          ASSERT_TRUE(sim.marble().position.allFinite() && sim.marble().velocity.allFinite())
+              << name(p) << " step " << i;
+          deepest = std::max(deepest, penetration(sim));
+          rise = std::max(rise, sim.energy() - energy0);
+        }
+        EXPECT_EQ(sim.marble().phase, MarblePhase::Free) << name(p);
+        EXPECT_LE(deepest, 0.01 * kRadius) << name(p);         // 1% of the radius
+        EXPECT_LE(rise, 1e-9 * std::abs(energy0)) << name(p);  // a board at rest does no work
+      }
+}
+
+TEST(Extremes, ADeadImpactStopsTheMarbleWithoutJitter) {
+  for (IntegratorKind integrator : kAll)
+    for (double step : {1e-3, 1e-2, 0.05}) {
+      Params p = placed(with(integrator, Model::Smooth, step), {0, 0, kRadius + 0.02});
+      p.restitution = 0;
+      Simulation sim(test::flatFloor(10, 10, 0.01, p));
+      int impacts = 0;
+      bool landed = false;
+      double jitter = 0;
+      for (int i = 0; i < static_cast<int>(2.0 / step); ++i) {
+        sim.step();
+        impacts += static_cast<int>(sim.events().size());
+        landed = landed || sim.marble().position.z() < kRadius + 1e-6;
+        if (landed) jitter = std::max(jitter, std::abs(sim.marble().velocity.z()));
+      }
+      // One impact (at a coarse step semi-implicit Euler's threshold of 2 g h takes it as a
+      // contact: none), then nothing.
+      EXPECT_LE(impacts, 1) << name(p);
+      EXPECT_TRUE(landed) << name(p);
+      EXPECT_LT(jitter, 1e-9) << name(p);  // m/s
+    }
+}
+
+TEST(Extremes, AMarbleInACornerRestsAtAnyTilt) {
+  // The classic maze's start is a corner (walls at -x and +y): tilted towards it the marble is
+  // pressed into it, and must rest there, moving less than a micrometre in 5 s.
+  for (IntegratorKind integrator : kAll)
+    for (double degrees : {10.0, 30.0, 45.0, 60.0, 80.0, 89.0}) {
+      Scene scene = loadScene("classic");
+      scene.params.integrator = integrator;
+      scene.params.tilt_limit = 1.57;
+      const double tilt = degrees * 3.14159265358979323846 / 180;
+      scene.params.initial_roll = -tilt / std::sqrt(2.0);   // negative roll lowers +y
+      scene.params.initial_pitch = -tilt / std::sqrt(2.0);  // lowers -x
+      Simulation sim(scene);
+      sim.setTargetTilt(scene.params.initial_roll, scene.params.initial_pitch);
+      for (int i = 0; i < 3000; ++i) sim.step();  // settle
+      const Vec3 settled = sim.marbleInBoard();
+      for (int i = 0; i < 5000; ++i) sim.step();
+      EXPECT_LT((sim.marbleInBoard() - settled).norm(), 1e-6)
+          << getParam(scene.params, "integrator") << " at " << degrees << " degrees";
+      EXPECT_LT(sim.marble().velocity.norm(), 1e-6);
+    }
+}
+
+TEST(Extremes, SettingsThatCannotBeSimulatedAreRefusedNamingTheKey) {
+  Params p;
+  p.start_velocity = Vec3(1e158, 0, 0);
+  try {
+    validate(p);
+    FAIL() << "a velocity the sweep cannot resolve was accepted";
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("start_velocity"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(setParam(p, "step", "0"), ParamError);
+  EXPECT_THROW(setParam(p, "marble_radius", "-1"), ParamError);
+  EXPECT_THROW(setParam(p, "restitution", "nan"), ParamError);
+  try {
+    parseScene("grid:\n  x: [1e308, 1e308]\n  y: 0.01\n  z: 0.01\nlayout: |\n  S G\n", "huge.yaml");
+    FAIL() << "slots of 1e308 m were accepted";
+  } catch (const MazeFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.yaml:2:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -22,8 +22,9 @@ class Board {
   void setTargetTilt(double roll, double pitch);
   /// Drive at the given rates (clamped to the tilt-rate limit) until the tilt limit stops them.
   void setTiltRate(double roll_rate, double pitch_rate);
-  /// Moves the board over a step of h seconds and updates its angular velocity.
-  void advance(double h);
+  /// Moves the board over a step of h seconds, turning each angle by at most `most_turn` (rad),
+  /// and updates its angular velocity.
+  void advance(double h, double most_turn = 1e9);
 
   double roll() const { return roll_; }
   double pitch() const { return pitch_; }

@@ -79,7 +79,7 @@ void Board::setTiltRate(double roll_rate, double pitch_rate) {
   pitch_rate_ = clampRate(pitch_rate);
 }
 
-void Board::advance(double h) {
+void Board::advance(double h, double most_turn) {
   double new_roll = roll_, new_pitch = pitch_;
   if (drive_ == Drive::Rate) {
     new_roll = clampTilt(roll_ + roll_rate_ * h);
@@ -98,6 +98,8 @@ void Board::advance(double h) {
     new_roll = follow(roll_, target_roll_);
     new_pitch = follow(pitch_, target_pitch_);
   }
+  new_roll = roll_ + std::clamp(new_roll - roll_, -most_turn, most_turn);
+  new_pitch = pitch_ + std::clamp(new_pitch - pitch_, -most_turn, most_turn);
   if (new_roll == roll_ && new_pitch == pitch_) {  // at rest: nothing to recompute
     angular_velocity_.setZero();
     return;

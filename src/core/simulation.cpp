@@ -1,5 +1,6 @@
 #include "marble_maze/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -13,6 +14,8 @@ namespace {
 constexpr double kContactMargin = 1e-7;  // m
 // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 constexpr int kMaxImpactsPerSubstep = 4;
+// The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
+constexpr double kMostTurn = 0.05;
 
 }  // namespace
 
@@ -161,15 +164,29 @@ double Simulation::energy() const {
 
 void Simulation::step() {
   events_.clear();
-  const double h = params_.step / params_.substeps;
-  for (int i = 0; i < params_.substeps; ++i) substep(h, time_ + i * h);
+  // A board that turns far in one step (a tilt snapping across its range) is taken in as many
+  // more substeps as keep each turn within kMostTurn, turning that much in each: the sweep
+  // follows a substep's motion relative to the board as a chord, near its arc only for small
+  // turns.
+  int substeps = params_.substeps;
+  // (A rate limit that keeps the turn small spares the probe.)
+  if (!(params_.tilt_rate_limit > 0 && params_.tilt_rate_limit * params_.step <= kMostTurn)) {
+    Board probe = board_;
+    probe.advance(params_.step);
+    const double turn =
+        std::max(std::abs(probe.roll() - board_.roll()), std::abs(probe.pitch() - board_.pitch()));
+    if (turn > kMostTurn * substeps)
+      substeps = static_cast<int>(std::min(10000.0, std::ceil(turn / kMostTurn)));
+  }
+  const double h = params_.step / substeps;
+  for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
   time_ += params_.step;
   ++steps_;
 }
 
 void Simulation::substep(double h, double start_time) {
   const GridFrame start = frame_;  // the board's pose at the start of the substep
-  board_.advance(h);
+  board_.advance(h, kMostTurn);
   frame_ = gridFrame();
   if (marble_.phase != MarblePhase::Free) {  // a finished marble rides along with the board
     marble_.position = frame_.toWorld(held_in_grid_);

@@ -46,6 +46,9 @@ struct Params {
   double initial_roll = 0.0;         ///< rad
   double initial_pitch = 0.0;        ///< rad
 
+  /// m, world: where the board's pivot (the centre of its floor's top surface) is.
+  Vec3 board_position = Vec3::Zero();
+
   // Start state; without start_position the marble starts on the maze's start cell.
   bool has_start_position = false;
   Vec3 start_position = Vec3::Zero();  ///< m, board frame
@@ -93,6 +96,9 @@ std::string paramsText(const Params& params);
 
 /// Params from paramsText's lines over `base`; throws ParamError naming a bad line.
 Params paramsFromText(const std::string& text, Params base = Params());
+
+/// The shortest text that reads back as exactly the same double.
+std::string exactText(double value);
 
 /// Reads a finite number that is the whole of `text` (spaces around it allowed); false otherwise.
 bool parseFiniteNumber(const std::string& text, double* value);

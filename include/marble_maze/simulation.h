@@ -17,7 +17,10 @@ namespace marble_maze {
 enum class MarblePhase { Free, InHole, AtGoal, OffBoard };
 
 struct Marble {
-  Vec3 position = Vec3::Zero();          ///< m, world frame (centre)
+  /// m, the centre, along the world's axes from the board's pivot: the physics is worked out
+  /// around the board wherever it is, the same to the last bit (Simulation::worldPosition()
+  /// adds where the board is).
+  Vec3 position = Vec3::Zero();
   Vec3 velocity = Vec3::Zero();          ///< m/s, world frame
   Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world frame
   Quat orientation = Quat::Identity();   ///< world frame
@@ -82,6 +85,8 @@ class Simulation {
   GridFrame gridFrame() const;
   /// The marble's centre in the board frame.
   Vec3 marbleInBoard() const;
+  /// The marble's centre in the world: its position plus where the board's pivot is.
+  Vec3 worldPosition() const { return marble_.position + params_.board_position; }
   /// Kinetic plus potential energy (J), potential measured from the world's z = 0, both at the
   /// instant the integrator's velocity belongs to (for semi-implicit Euler half a substep back).
   double energy() const;

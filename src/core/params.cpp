@@ -10,6 +10,16 @@
 #include <sstream>
 
 namespace marble_maze {
+/// The shortest text that reads back as exactly the same double.
+std::string exactText(double value) {
+  char text[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -40,14 +50,8 @@ Vec3 parseVec3(const std::string& key, const std::string& text) {
   return v;
 }
 
-/// The shortest text that reads back as exactly the same double.
 std::string format(double value) {
-  char text[32];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
+  return exactText(value);
 }
 
 std::string format(const Vec3& v) {
@@ -213,6 +217,11 @@ const std::vector<Entry>& entries() {
              kPi / 2),
       number("initial_pitch", "rad", "board pitch at the start", &Params::initial_pitch, -kPi / 2,
              kPi / 2),
+      {{"board_position", "m", "where the board's pivot is in the world: X,Y,Z"},
+       [](Params& p, const std::string& text) {
+         p.board_position = parseVec3("board_position", text);
+       },
+       [](const Params& p) { return format(p.board_position); }},
       {{"start_position", "m", "marble start X,Y,Z in the board frame"},
        [](Params& p, const std::string& text) {
          p.start_position = parseVec3("start_position", text);

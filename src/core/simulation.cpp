@@ -159,7 +159,7 @@ double Simulation::energy() const {
   const Vec3 position = marble_.position - integrator_->velocityLag() * h * marble_.velocity;
   return 0.5 * m * marble_.velocity.squaredNorm() +
          0.5 * params_.marbleInertia() * marble_.angular_velocity.squaredNorm() +
-         m * params_.gravity * position.z();
+         m * params_.gravity * (position.z() + params_.board_position.z());
 }
 
 void Simulation::step() {

@@ -43,7 +43,7 @@ marble_maze::MarbleState StateOutput::stateOf(const mm::Simulation& sim,
   marble_maze::MarbleState state;
   state.header.stamp = stamp;
   state.header.frame_id = settings_.world_frame;
-  state.position = tf2::toMsg(m.position);
+  state.position = tf2::toMsg(sim.worldPosition());
   tf2::toMsg(m.velocity, state.velocity);
   tf2::toMsg(m.angular_velocity, state.angular_velocity);
   state.position_in_board = tf2::toMsg(sim.marbleInBoard());
@@ -64,7 +64,7 @@ void StateOutput::publishState(const mm::Simulation& sim, const ros::Time& stamp
   odom.header.stamp = stamp;
   odom.header.frame_id = settings_.world_frame;
   odom.child_frame_id = settings_.marble_frame;
-  odom.pose.pose.position = tf2::toMsg(m.position);
+  odom.pose.pose.position = tf2::toMsg(sim.worldPosition());
   odom.pose.pose.orientation = tf2::toMsg(m.orientation);
   const mm::Mat3 to_marble = m.orientation.toRotationMatrix().transpose();
   tf2::toMsg(mm::Vec3(to_marble * m.velocity), odom.twist.twist.linear);
@@ -76,6 +76,7 @@ void StateOutput::publishState(const mm::Simulation& sim, const ros::Time& stamp
   const mm::Mat3& board = sim.board().rotation();
   Eigen::Isometry3d world_to_board = Eigen::Isometry3d::Identity();
   world_to_board.linear() = board;
+  world_to_board.translation() = sim.params().board_position;
   geometry_msgs::TransformStamped board_tf = tf2::eigenToTransform(world_to_board);
   board_tf.header.stamp = stamp;
   board_tf.header.frame_id = settings_.world_frame;

@@ -168,14 +168,15 @@ std::ostream* openOutput(const std::string& path, std::unique_ptr<std::ofstream>
 }
 
 void writeRow(std::ostream& out, const mm::Simulation& sim) {
+  // Every value in its shortest form that reads back exactly (a position 1 km out keeps its
+  // micrometres; bit-exact comparisons need it).
   const mm::Marble& m = sim.marble();
-  char row[512];
-  std::snprintf(
-      row, sizeof row, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d,%s\n",
-      sim.time(), m.position.x(), m.position.y(), m.position.z(), m.velocity.x(), m.velocity.y(),
-      m.velocity.z(), m.angular_velocity.x(), m.angular_velocity.y(), m.angular_velocity.z(),
-      sim.board().roll(), sim.board().pitch(), m.contacts, phaseName(m.phase));
-  out << row;
+  out << mm::exactText(sim.time());
+  const mm::Vec3 position = sim.worldPosition();
+  for (const mm::Vec3* v : {&position, &m.velocity, &m.angular_velocity})
+    for (int a = 0; a < 3; ++a) out << ',' << mm::exactText((*v)[a]);
+  out << ',' << mm::exactText(sim.board().roll()) << ',' << mm::exactText(sim.board().pitch())
+      << ',' << m.contacts << ',' << phaseName(m.phase) << '\n';
 }
 
 std::string describe(const mm::Event& e) {

@@ -1,6 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
-.PHONY: all deps build test demo bench tradeoff screenshot lint format clean ws
+.PHONY: all deps build test demo bench tradeoff soak screenshot lint format clean ws
 
 all: build
 
@@ -22,6 +22,12 @@ bench: build
 # The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (a few minutes).
 tradeoff: build
 	@bash scripts/tradeoff.sh
+
+# Long runs: 10 million steps at rest and of random tilting (make test runs a million of each).
+soak: deps
+	@bash scripts/build.sh tests
+	@. scripts/workspace.sh && MARBLE_MAZE_SOAK_STEPS=10000000 \
+	  "$$WS/devel/lib/marble_maze/test_core" --gtest_filter='Soak.*'
 
 # The workspace's path, for: source "$$(make -s ws)/devel/setup.bash"
 ws:

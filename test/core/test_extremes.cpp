@@ -179,6 +179,50 @@ TEST(Extremes, ABoardAKilometreFromTheOriginBehavesAsAtTheOrigin) {
   EXPECT_GT((here.back().first - here.front().first).norm(), 0.01);  // the marble did travel
 }
 
+TEST(Extremes, AHundredMetresPerSecondAtWallsEdgesAndCornersNeverTunnelsAndLeavesAtE) {
+  // A 5 mm post in a room, hit head on (a face), across its edge and at its corner, at 100 m/s,
+  // with each integrator at 1 ms and at the largest step, 50 ms (5 m a step, 800 radii).
+  Maze maze(AxisSlots(0.005, 0.5, 5), AxisSlots(0.005, 0.5, 5), AxisSlots(0.005, 0.02, 2));
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i) {
+      maze.setSolid({i, j, 0}, true);
+      if (i == 0 || j == 0 || i == 4 || j == 4 || (i == 2 && j == 2))
+        maze.setSolid({i, j, 1}, true);
+    }
+  maze.setStart({1, 1});
+  const Box post = maze.tileBox({2, 2, 1});
+  const Vec3 centre = post.centre() - maze.pivot();
+  const Vec3 aims[] = {{1, 0, 0}, Vec3(1, 1, 0).normalized(), Vec3(1, 0.999, 0).normalized()};
+  for (IntegratorKind integrator : kAll)
+    for (double step : {1e-3, 0.05})
+      for (const Vec3& aim : aims) {
+        Params p = placed(with(integrator, Model::Smooth, step),
+                          Vec3(centre.x() - 0.2 * aim.x(), centre.y() - 0.2 * aim.y(), kRadius),
+                          100 * aim);
+        p.gravity = 0;  // on the floor, touching it without pressing: the impacts alone
+        p.restitution = 0.7;
+        Simulation sim({maze, p});
+        double deepest = 0, fastest = 0;
+        std::vector<Event> impacts;
+        for (int i = 0; i < 40 && impacts.size() < 2; ++i) {
+          sim.step();
+          deepest = std::max(deepest, penetration(sim));
+          fastest = std::max(fastest, sim.marble().velocity.norm());
+          impacts.insert(impacts.end(), sim.events().begin(), sim.events().end());
+        }
+        ASSERT_GE(impacts.size(), 1u) << name(p);
+        EXPECT_EQ(impacts[0].tile, Index3(2, 2, 1)) << name(p);  // the post, not beyond it
+        EXPECT_LE(deepest, 0.01 * kRadius) << name(p);
+        EXPECT_LE(fastest, 100 * (1 + 1e-12)) << name(p);  // no impact adds speed
+        if (aim.y() == 0) {
+          ASSERT_GE(impacts.size(), 2u) << name(p);
+          // Head on: back from the post at e times 100 m/s, straight onto the room's west wall.
+          EXPECT_NEAR(impacts[0].speed, 100, 1e-9 * 100) << name(p);
+          EXPECT_NEAR(impacts[1].speed, 70, 1e-9 * 70) << name(p);
+        }
+      }
+}
+
 TEST(Extremes, SettingsThatCannotBeSimulatedAreRefusedNamingTheKey) {
   Params p;
   p.start_velocity = Vec3(1e158, 0, 0);

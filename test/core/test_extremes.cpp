@@ -223,6 +223,138 @@ TEST(Extremes, AHundredMetresPerSecondAtWallsEdgesAndCornersNeverTunnelsAndLeave
       }
 }
 
+TEST(Extremes, EveryStepRunsTheClassicMazeUnderATiltProgrammeWithoutEnteringATile) {
+  for (IntegratorKind integrator : kAll)
+    for (double step : {1e-4, 1e-3, 1e-2, 0.05}) {
+      Scene scene = loadScene("classic");
+      scene.params.integrator = integrator;
+      scene.params.step = step;
+      Simulation sim(scene);
+      double deepest = 0;
+      for (int i = 0; i < static_cast<int>(5.0 / step); ++i) {
+        const double t = i * step;
+        sim.setTargetTilt(0.1 * std::sin(2 * t), 0.1 * std::cos(2 * t));
+        sim.step();
+        ASSERT_TRUE(sim.marble().position.allFinite()) << name(scene.params);
+        ASSERT_NE(sim.marble().phase, MarblePhase::OffBoard) << name(scene.params);
+        if (sim.marble().phase == MarblePhase::Free) deepest = std::max(deepest, penetration(sim));
+      }
+      EXPECT_LE(deepest, 0.01 * kRadius) << name(scene.params);
+    }
+}
+
+TEST(Extremes, MarblesFromAHundredthOfACellToLargerThanOneAndSlotsFromATenthOfAMillimetre) {
+  // Each on a 10 degree incline for 1 s, rolling into a wall at its foot: finite, never inside a
+  // tile by more than 1% of its radius.
+  struct Case {
+    double thin, wide, radius;
+    const char* what;
+  };
+  const Case cases[] = {{0.1, 0.1, 0.001, "a marble 1% of a 0.1 m cell"},
+                        {0.02, 0.02, 0.03, "a marble three cells wide"},
+                        {0.0001, 1.0, 0.006, "walls of 0.1 mm between 1 m cells"}};
+  for (const Case& c : cases) {
+    const int n = 7;
+    Maze maze(AxisSlots(c.thin, c.wide, n), AxisSlots(c.thin, c.wide, n), AxisSlots(0.005, 1, 2));
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        maze.setSolid({i, j, 0}, true);
+        if (i == 0 || j == 0 || i == n - 1 || j == n - 1) maze.setSolid({i, j, 1}, true);
+      }
+    maze.setStart({3, 3});
+    Params p;
+    p.marble_radius = c.radius;
+    p.initial_pitch = 0.17;
+    p.start_velocity = Vec3(1.0, 0.3, 0);
+    Simulation sim({maze, p});
+    double deepest = 0;
+    for (int i = 0; i < 3000; ++i) {
+      sim.step();
+      ASSERT_TRUE(sim.marble().position.allFinite()) << c.what;
+      ASSERT_EQ(sim.marble().phase, MarblePhase::Free) << c.what;
+      std::vector<Contact> contacts;
+      findContacts(sim.maze(), sim.gridFrame(), sim.marble().position, c.radius, 0, &contacts);
+      for (const Contact& k : contacts) deepest = std::max(deepest, k.depth);
+    }
+    EXPECT_LE(deepest, 0.01 * c.radius) << c.what;
+  }
+}
+
+TEST(Extremes, AThousandByAThousandCellMazeAndATwentyCubedStackOfTiles) {
+  // 2001 x 2001 slots: a marble rolls across a corner of it; 20 x 20 x 20 tiles: a marble falls
+  // through a lattice of floors with gaps, from the top to the bottom.
+  {
+    Maze big(AxisSlots(0.005, 0.0221, 2001), AxisSlots(0.005, 0.02325, 2001),
+             AxisSlots(0.005, 0.012, 2));
+    for (int j = 0; j < 2001; ++j)
+      for (int i = 0; i < 2001; ++i) big.setSolid({i, j, 0}, true);
+    big.setStart({1999, 1999});
+    Params p;
+    p.start_velocity = Vec3(-0.5, -0.3, 0);
+    Simulation sim({big, p});
+    for (int i = 0; i < 2000; ++i) sim.step();
+    EXPECT_TRUE(sim.marble().position.allFinite());
+    EXPECT_EQ(sim.marble().phase, MarblePhase::Free);
+    EXPECT_LT(penetration(sim), 0.01 * kRadius);
+  }
+  {
+    Maze stack(AxisSlots::uniform(0.02, 20), AxisSlots::uniform(0.02, 20),
+               AxisSlots::uniform(0.02, 20));
+    for (int k = 0; k < 20; k += 4)
+      for (int j = 0; j < 20; ++j)
+        for (int i = 0; i < 20; ++i)
+          if (k == 0 || (i + j + k) % 5 != 0) stack.setSolid({i, j, k}, true);  // gaps above
+    stack.setStart({10, 10});
+    Params p = placed(Params(), {0.001, 0.001, 0.35});  // near the top of the stack
+    p.restitution = 0.7;
+    Simulation sim({stack, p});
+    double deepest = 0;
+    for (int i = 0; i < 5000; ++i) {
+      sim.step();
+      ASSERT_TRUE(sim.marble().position.allFinite());
+      deepest = std::max(deepest, penetration(sim));
+    }
+    EXPECT_LE(deepest, 0.01 * kRadius);
+  }
+}
+
+TEST(Extremes, AMarbleOnAnEdgeAVertexASeamOrWedgedInACornerRests) {
+  // A floor of 1 cm tiles with a 1 cm step (a wall) along x = 0: the marble exactly over a floor
+  // seam, over a vertex where four floor tiles meet, on top of the wall's edge (half over it),
+  // and wedged in the corner between the wall, a cross wall and the floor under a tilt that
+  // presses it in; at 1 ms and at 50 ms. Each moves less than a micrometre in 10 s.
+  Maze maze(AxisSlots::uniform(0.01, 20), AxisSlots::uniform(0.01, 20),
+            AxisSlots::uniform(0.01, 3));
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) {
+      maze.setSolid({i, j, 0}, true);
+      if (i == 10 || j == 5) maze.setSolid({i, j, 1}, true);  // walls: x in [0, 0.01], y = -0.05
+    }
+  maze.setStart({15, 15});
+  struct Case {
+    Vec3 at;
+    double roll, pitch;
+    const char* what;
+  };
+  const double top = kRadius, wall_top = 0.01 + kRadius;
+  const Case cases[] = {{{0.055, 0.03, top}, 0, 0, "over a seam"},
+                        {{0.05, 0.04, top}, 0, 0, "over a vertex of four tiles"},
+                        {{0.0, 0.03, wall_top}, 0, 0, "on the wall's top, over its edge"},
+                        {{0.01 + kRadius, -0.04 + kRadius, top}, 0.05, 0.05, "wedged in a corner"}};
+  for (IntegratorKind integrator : kAll)
+    for (double step : {1e-3, 0.05})
+      for (const Case& c : cases) {
+        Params p = placed(with(integrator, Model::Rolling, step), c.at);
+        p.initial_roll = c.roll;     // positive roll lowers -y, positive pitch lowers +x: into the
+        p.initial_pitch = -c.pitch;  // corner at the wall's +x face and the cross wall's +y face
+        Simulation sim({maze, p});
+        for (int i = 0; i < static_cast<int>(2.0 / step); ++i) sim.step();  // settle
+        const Vec3 settled = sim.marbleInBoard();
+        for (int i = 0; i < static_cast<int>(10.0 / step); ++i) sim.step();
+        EXPECT_LT((sim.marbleInBoard() - settled).norm(), 1e-6) << name(p) << " " << c.what;
+      }
+}
+
 TEST(Extremes, SettingsThatCannotBeSimulatedAreRefusedNamingTheKey) {
   Params p;
   p.start_velocity = Vec3(1e158, 0, 0);

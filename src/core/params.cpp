@@ -336,10 +336,10 @@ void validate(const Params& p) {
   // The sweep walks a step's path in at most a million pieces of a radius: a faster marble could
   // pass a wall unseen.
   const double most_speed = 1e5 * p.marble_radius / p.step;
-  if (p.start_velocity.norm() > most_speed) {
+  if (p.start_velocity.stableNorm() > most_speed) {
     std::ostringstream msg;
-    msg << "start_velocity: " << p.start_velocity.norm() << " m/s is more than the " << most_speed
-        << " m/s (1e5 radii a step) that a step resolves";
+    msg << "start_velocity: " << p.start_velocity.stableNorm() << " m/s is more than the "
+        << most_speed << " m/s (1e5 radii a step) that a step resolves";
     throw ParamError(msg.str());
   }
   if (std::abs(p.initial_roll) > p.tilt_limit || std::abs(p.initial_pitch) > p.tilt_limit)

@@ -78,6 +78,8 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--maze /nonexistent/maze.yaml", "/nonexistent/maze.yaml"},
       {"--tilt-csv /nonexistent/tilt.csv", "cannot read file"},
       {"--duration", "--duration: needs a value"},
+      {"--set start_velocity=1e158,0,0", "start_velocity: 1e+158 m/s is more than"},
+      {"--set step=0", "step: 0 is out of range"},
   };
   for (const auto& [args, message] : cases) {
     const Result r = runSimulate(args);

@@ -49,6 +49,9 @@ struct Sweep {
   Vec3 bend = Vec3::Zero();
   double radius = 0;
   double margin = 0;  ///< tiles this close to the start are contacts, not impacts
+  /// Across a tile it touches, a path slower than this (per unit s) rests on it: a path leaving
+  /// faster may come back to it within the stretch, a small bounce.
+  double resting_rate = 0;
 
   Vec3 at(double s) const { return from + s * (path + s * bend); }
   Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds

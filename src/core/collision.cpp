@@ -156,6 +156,18 @@ bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow,
   return true;
 }
 
+/// Whether a bent path leaving a tile it touches (`away`: from the tile's nearest point to the
+/// start) can come back to it within the stretch: it must be leaving clearly (a contact the
+/// marble rolls on has no rate across it but for rounding) and bending back fast enough, as a
+/// small bounce does.
+bool comesBack(const Sweep& w, const Vec3& away) {
+  const double length = away.norm();
+  if (!(length > 0)) return false;
+  const Vec3 n = away / length;
+  const double rate = n.dot(w.rate(0)), bend = n.dot(w.bend);
+  return rate > w.resting_rate && bend < 0 && rate <= -2 * bend;  // back by about s = 1
+}
+
 /// The range of one coordinate of a bent path over s in [0, 1].
 void coordinateRange(const Sweep& w, int a, double* lo, double* hi) {
   const double end = w.from[a] + w.path[a] + w.bend[a];
@@ -214,7 +226,15 @@ bool firstDescentWhere(const double* c, double lo, double hi, Accept accept, dou
 /// edges and corners. Its surface is made of the faces moved out by the radius, the edges'
 /// cylinders and the corners' spheres: the path first meets it where it first goes into one of
 /// them, at a root of a quadratic (faces) or a quartic (edges, corners).
-bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* time, Vec3* point) {
+bool bentSphereBoxImpact(const Maze& maze, const Index3& t, const Sweep& w, const Box& box,
+                         double before, double* time, Vec3* point) {
+  // A face shared with a solid neighbour is inside the union of tiles, and so is every edge and
+  // corner on it: no path meets them first (the neighbour's own surface is met instead).
+  const auto open = [&](int a, int side) {
+    Index3 n = t;
+    n[a] += side;
+    return !maze.solid(n);
+  };
   const double r = w.radius;
   double best = before;
   Vec3 lo, hi;  // the path's bounding box: a feature beyond it is never reached
@@ -227,7 +247,7 @@ bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* 
     const int b = (a + 1) % 3, d = (a + 2) % 3;
     for (int side : {-1, 1}) {
       // Faces: side * (x_a(s) - plane) falls through zero.
-      if (!beyond(a, side)) continue;
+      if (!beyond(a, side) || !open(a, side)) continue;
       const double plane = corner(a, side) + side * r;
       const double c[3] = {side * (w.from[a] - plane), side * w.path[a], side * w.bend[a]};
       double s;
@@ -242,7 +262,8 @@ bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* 
     // The edges along axis a.
     for (int side_b : {-1, 1})
       for (int side_d : {-1, 1}) {
-        if (!beyond(b, side_b) || !beyond(d, side_d)) continue;
+        if (!beyond(b, side_b) || !beyond(d, side_d) || !open(b, side_b) || !open(d, side_d))
+          continue;
         Vec3 edge = Vec3::Zero();
         edge[b] = corner(b, side_b);
         edge[d] = corner(d, side_d);
@@ -266,7 +287,9 @@ bool bentSphereBoxImpact(const Sweep& w, const Box& box, double before, double* 
   for (int sx : {-1, 1})
     for (int sy : {-1, 1})
       for (int sz : {-1, 1}) {
-        if (!beyond(0, sx) || !beyond(1, sy) || !beyond(2, sz)) continue;
+        if (!beyond(0, sx) || !beyond(1, sy) || !beyond(2, sz) || !open(0, sx) || !open(1, sy) ||
+            !open(2, sz))
+          continue;
         const Vec3 vertex(corner(0, sx), corner(1, sy), corner(2, sz));
         const int axes[3] = {0, 1, 2};
         double c[5], s;
@@ -377,13 +400,21 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
       // A tile touched at the start is a contact, left to findContacts, unless a bent path is
       // leaving it: that path may come back to it in this stretch (a small bounce).
       const Vec3 away = w.from - closestPoint(box, w.from);
-      if (away.squaredNorm() < touching && !(bent && away.dot(w.rate(0)) > 0)) return;
+      const bool touches = away.squaredNorm() < touching;
+      if (touches && !(bent && comesBack(w, away))) return;
       double time;
       Vec3 q;
-      if (bent) {
+      if (touches) {
+        // Back onto the tile it is leaving (a small bounce): across the plane of its contact,
+        // whose normal is `away`, a root of a quadratic.
+        const Vec3 n = away.normalized();
+        const double c[3] = {away.norm() - radius, n.dot(w.path), n.dot(w.bend)};
+        if (!firstDescent(c, 2, 0, std::min(1.0, best), &time) || time >= best) return;
+        q = closestPoint(box, w.at(time));
+      } else if (bent) {
         // The chord grown by the sag rules out most tiles before the exact test.
         if (!segmentMeetsBox(w.from, chord, box, radius + sag)) return;
-        if (!bentSphereBoxImpact(w, box, best, &time, &q)) return;
+        if (!bentSphereBoxImpact(maze, t, w, box, best, &time, &q)) return;
       } else if (!sphereBoxImpact(w.from, w.path, radius, box, &time, &q) || time >= best) {
         return;
       }

@@ -14,6 +14,9 @@ namespace {
 constexpr double kContactMargin = 1e-7;  // m
 // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 constexpr int kMaxImpactsPerSubstep = 4;
+// Slower than this across a contact the marble rests on it (what the contact solver leaves of a
+// velocity it stopped); faster it is leaving, and may come back within the step.
+constexpr double kRestingSpeed = 1e-5;  // m/s
 // The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
 constexpr double kMostTurn = 0.05;
 
@@ -259,7 +262,7 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
 void Simulation::chooseActingContacts() {
   acting_.clear();
   for (const Contact& c : contacts_) {
-    const bool leaving = (marble_.velocity - c.surface_velocity).dot(c.normal) > 1e-9;
+    const bool leaving = (marble_.velocity - c.surface_velocity).dot(c.normal) > kRestingSpeed;
     if (!(leaving && integrator_->bends())) acting_.push_back(c);
   }
 }
@@ -322,6 +325,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
     Sweep sweep;
     sweep.radius = params_.marble_radius;
     sweep.margin = kContactMargin;
+    sweep.resting_rate = kRestingSpeed * rest;
     sweep.bend = frame_.rotation.transpose() * path.second;
     if (impacts == 0) {
       sweep.from = start.toGrid(marble_.position);

@@ -1,6 +1,8 @@
 // Small scenes built in code for the physics tests.
 #pragma once
 
+#include <string>
+
 #include "marble_maze/maze_file.h"
 
 namespace marble_maze {
@@ -23,6 +25,22 @@ inline Scene flatFloor(int nx, int ny, double tile, const Params& params = Param
   return {floorMaze(AxisSlots::uniform(tile, nx), AxisSlots::uniform(tile, ny),
                     AxisSlots::uniform(0.005, 2)),
           params};
+}
+
+/// Params of a scheme: integrator, model, step and restitution.
+inline Params scheme(IntegratorKind integrator, Model model, double step,
+                     double restitution = 0.7) {
+  Params p;
+  p.integrator = integrator;
+  p.model = model;
+  p.step = step;
+  p.restitution = restitution;
+  return p;
+}
+
+/// "velocity_verlet rolling step 0.001": which scheme a failure is of.
+inline std::string name(const Params& p) {
+  return getParam(p, "integrator") + " " + getParam(p, "model") + " step " + getParam(p, "step");
 }
 
 /// Params for a marble placed by hand (board frame) at rest.

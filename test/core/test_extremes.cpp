@@ -19,16 +19,10 @@ constexpr double kRadius = 0.006;
 const IntegratorKind kAll[] = {IntegratorKind::SemiImplicitEuler, IntegratorKind::VelocityVerlet,
                                IntegratorKind::RungeKutta4};
 
-Params with(IntegratorKind integrator, Model model, double step) {
-  Params p;
-  p.integrator = integrator;
-  p.model = model;
-  p.step = step;
-  return p;
-}
+using test::name;
 
-std::string name(const Params& p) {
-  return getParam(p, "integrator") + " " + getParam(p, "model") + " step " + getParam(p, "step");
+Params with(IntegratorKind integrator, Model model, double step) {
+  return test::scheme(integrator, model, step, Params().restitution);
 }
 
 /// How far the marble is inside any tile now (0 when it overlaps none).

@@ -22,18 +22,8 @@ constexpr double kExact = 1e-9;  // relative: rounding only
 const IntegratorKind kExactSchemes[] = {IntegratorKind::VelocityVerlet,
                                         IntegratorKind::RungeKutta4};
 
-Params scheme(IntegratorKind integrator, Model model, double step, double restitution = 0.7) {
-  Params p;
-  p.integrator = integrator;
-  p.model = model;
-  p.step = step;
-  p.restitution = restitution;
-  return p;
-}
-
-std::string name(const Params& p) {
-  return getParam(p, "integrator") + " " + getParam(p, "model") + " step " + getParam(p, "step");
-}
+using test::name;
+using test::scheme;
 
 void run(Simulation* sim, double seconds) {
   const auto steps = std::lround(seconds / sim->params().step);

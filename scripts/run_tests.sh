@@ -14,5 +14,10 @@ if [ $status -ne 0 ]; then
   echo "catkin_make run_tests failed (exit $status); the whole log is $WS/run_tests.log"
   extra=(--also-failed "catkin_make run_tests")
 fi
+# The core's tests again under the sanitizers, into the same results.
+if ! bash "$repo/scripts/sanitize.sh" "$results/marble_maze"; then
+  echo "the sanitized core tests failed (logs in $WS/sanitize)"
+  extra+=(--also-failed "sanitized core tests")
+fi
 # catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
 /usr/bin/python3 "$repo/scripts/count_results.py" "$results" "${extra[@]}"

@@ -46,14 +46,21 @@ class ContactSolver {
   /// acts within its cone, rolling resistance slows the spin.
   void constrain(const std::vector<Contact>& contacts, MarbleBody* body,
                  std::vector<ContactOutcome>* outcomes);
+  /// The work (J) the moving surfaces did on the marble in the last impact or constrain: the sum
+  /// of each contact's impulse dotted with its surface's velocity (0 on a board at rest). The
+  /// marble's energy gain from a solve is at most this.
+  double surfaceWork() const { return surface_work_; }
 
  private:
   void iterate(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
                std::vector<ContactOutcome>* outcomes);
   void resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const;
+  void measureWork(const std::vector<Contact>& contacts,
+                   const std::vector<ContactOutcome>& outcomes);
 
   Params params_;
   std::vector<Vec3> friction_impulses_;  // reused: no allocation per step
+  double surface_work_ = 0;
 };
 
 }  // namespace marble_maze

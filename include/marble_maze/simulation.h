@@ -90,6 +90,11 @@ class Simulation {
   /// Kinetic plus potential energy (J), potential measured from the world's z = 0, both at the
   /// instant the integrator's velocity belongs to (for semi-implicit Euler half a substep back).
   double energy() const;
+  /// The work (J) the moving board has done on the marble through its contacts since the marble
+  /// was last placed (reset, place or restore): its energy never rises above the energy it was
+  /// placed with plus this. Taken once a stretch, so approximate at coarse steps where a scheme
+  /// samples the contacts more than once (velocity Verlet, RK4).
+  double boardWork() const { return board_work_; }
   /// The marble's start position in the board frame.
   Vec3 startInBoard() const;
 
@@ -129,6 +134,7 @@ class Simulation {
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame
   double time_ = 0;
+  double board_work_ = 0;
   std::uint64_t steps_ = 0;
   std::vector<Event> events_;
   std::vector<Contact> contacts_;         // reused: no allocation per step

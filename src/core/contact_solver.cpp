@@ -31,6 +31,7 @@ bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& 
 void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* body,
                            std::vector<ContactOutcome>* outcomes) {
   outcomes->assign(contacts.size(), ContactOutcome());
+  surface_work_ = 0;
   if (contacts.empty()) return;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
@@ -40,24 +41,36 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* bod
   }
   const MarbleBody before = *body;
   iterate(contacts, true, body, outcomes);
+  measureWork(contacts, *outcomes);
   // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
   // would, the impacts are taken as perfectly inelastic instead, which never does.
   if (contacts.size() > 1 && relativeEnergy(contacts, body->velocity, *body) >
                                  relativeEnergy(contacts, before.velocity, before) * (1 + 1e-12)) {
     *body = before;
     iterate(contacts, false, body, outcomes);
+    measureWork(contacts, *outcomes);
   }
 }
 
 void ContactSolver::constrain(const std::vector<Contact>& contacts, MarbleBody* body,
                               std::vector<ContactOutcome>* outcomes) {
   outcomes->assign(contacts.size(), ContactOutcome());
+  surface_work_ = 0;
   if (contacts.empty()) return;
   // Rolling resistance first, so that friction turns its torque into the marble's slowing in the
   // same stretch: a constant resistance then slows it at a constant rate, exactly.
   if (params_.model == Model::Rolling && params_.rolling_resistance > 0)
     resistRolling(contacts, body);
   iterate(contacts, false, body, outcomes);
+  measureWork(contacts, *outcomes);
+}
+
+void ContactSolver::measureWork(const std::vector<Contact>& contacts,
+                                const std::vector<ContactOutcome>& outcomes) {
+  surface_work_ = 0;
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    surface_work_ += (outcomes[i].normal_impulse * contacts[i].normal + friction_impulses_[i])
+                         .dot(contacts[i].surface_velocity);
 }
 
 void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restitution,

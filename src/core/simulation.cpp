@@ -55,6 +55,7 @@ void Simulation::restore(const SimulationState& state) {
   time_ = state.time;
   steps_ = state.steps;
   frame_ = gridFrame();
+  board_work_ = 0;
   events_.clear();
 }
 
@@ -94,6 +95,7 @@ void Simulation::restore(ByteReader* in) {
   time_ = time;
   steps_ = steps;
   frame_ = gridFrame();
+  board_work_ = 0;
   events_.clear();
 }
 
@@ -151,6 +153,7 @@ void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity
   marble_.position = frame_.toWorld(position_in_board + maze_.pivot());
   marble_.velocity = velocity;
   marble_.angular_velocity = angular_velocity;
+  board_work_ = 0;
 }
 
 double Simulation::energy() const {
@@ -241,6 +244,7 @@ MarbleBody Simulation::body() const {
 void Simulation::impact(double time) {
   MarbleBody b = body();
   solver_.impact(contacts_, &b, &outcomes_);
+  board_work_ += solver_.surfaceWork();
   marble_.velocity = b.velocity;
   marble_.angular_velocity = b.angular_velocity;
   for (std::size_t i = 0; i < contacts_.size(); ++i)
@@ -254,7 +258,10 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
   b.velocity = start.linear + sim_->forces_.acceleration(start.linear) * duration;
   b.angular_velocity = start.angular;
   sim_->solver_.constrain(sim_->acting_, &b, &sim_->sample_outcomes_);
-  if (!sampled_) sim_->acting_outcomes_ = sim_->sample_outcomes_;
+  if (!sampled_) {
+    sim_->acting_outcomes_ = sim_->sample_outcomes_;
+    sim_->board_work_ += sim_->solver_.surfaceWork();
+  }
   sampled_ = true;
   return {b.velocity, b.angular_velocity};
 }

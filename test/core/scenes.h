@@ -27,6 +27,19 @@ inline Scene flatFloor(int nx, int ny, double tile, const Params& params = Param
           params};
 }
 
+/// The classic maze with its holes filled and no goal: a marble plays in it as long as a test
+/// likes.
+inline Maze closedClassic() {
+  const Maze classic = loadScene("classic").maze;
+  Maze maze(classic.axis(0), classic.axis(1), classic.axis(2));
+  for (int k = 0; k < classic.size().z(); ++k)
+    for (int j = 0; j < classic.size().y(); ++j)
+      for (int i = 0; i < classic.size().x(); ++i)
+        maze.setSolid({i, j, k}, classic.solid({i, j, k}) || k == 0);
+  maze.setStart(classic.start());
+  return maze;
+}
+
 /// Params of a scheme: integrator, model, step and restitution.
 inline Params scheme(IntegratorKind integrator, Model model, double step,
                      double restitution = 0.7) {

@@ -38,13 +38,7 @@ TEST(Soak, AMarbleAtRestStaysPut) {
 
 TEST(Soak, RandomTiltingInTheClassicMazeNeverEscapes) {
   // The classic maze with its holes filled and no goal: the marble plays for the whole run.
-  const Maze classic = loadScene("classic").maze;
-  Maze maze(classic.axis(0), classic.axis(1), classic.axis(2));
-  for (int k = 0; k < classic.size().z(); ++k)
-    for (int j = 0; j < classic.size().y(); ++j)
-      for (int i = 0; i < classic.size().x(); ++i)
-        maze.setSolid({i, j, k}, classic.solid({i, j, k}) || k == 0);
-  maze.setStart(classic.start());
+  const Maze maze = test::closedClassic();
   Simulation sim({maze, Params()});
   std::mt19937 random(7);  // the same targets every run
   const auto angle = [&] { return (random() % 2001 - 1000) * 1e-3 * 0.17; };

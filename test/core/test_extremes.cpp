@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "marble_maze/maze_file.h"
@@ -106,8 +107,9 @@ TEST(Extremes, AMarbleInACornerRestsAtAnyTilt) {
 
 TEST(Extremes, TiltsSnappingBetweenEightySixDegreesNeverLetTheMarbleOutOfAClosedRoom) {
   // A room of 0.1 m cells with a floor, walls and a lid; the target tilt jumps between +-1.5 rad
-  // on both axes every 0.3 s with no servo lag and no rate limit (the board snaps across its
-  // range in one step). At every step up to 0.05 s the marble stays in the room, finite.
+  // on both axes with no servo lag and no rate limit (the board snaps across its range in one
+  // step), every 0.3 s, and as rate spikes: reversing at every step. At every step up to 0.05 s
+  // the marble stays in the room, finite.
   // Built in code so that its goal can be out of reach (inside a wall): the marble plays on.
   Maze room(AxisSlots::uniform(0.1, 5), AxisSlots::uniform(0.1, 5), AxisSlots::uniform(0.1, 4));
   for (int k = 0; k < 4; ++k)
@@ -117,32 +119,34 @@ TEST(Extremes, TiltsSnappingBetweenEightySixDegreesNeverLetTheMarbleOutOfAClosed
   room.setStart({2, 2});
   room.addGoal({0, 0});
   for (IntegratorKind integrator : kAll)
-    for (double step : {0.001, 0.01, 0.05}) {
-      Scene scene{room, Params()};
-      scene.params.integrator = integrator;
-      scene.params.step = step;
-      scene.params.tilt_limit = 1.5;
-      scene.params.tilt_rate_limit = 0;
-      scene.params.tilt_response_time = 0;
-      Simulation sim(scene);
-      // Inside: the room's cells are grid slots 1..3 on each axis, 0.1..0.4 m; board frame is
-      // the grid less the pivot (0.25, 0.25, 0.1).
-      double outside = 0, free_until = 0;
-      for (int i = 0; i < static_cast<int>(2.0 / step); ++i) {
-        const int jump = static_cast<int>(i * step / 0.3);
-        const double sign = jump % 2 == 0 ? 1 : -1;
-        sim.setTargetTilt(1.5 * sign, (jump % 4 < 2 ? 1.5 : -1.5));
-        sim.step();
-        ASSERT_TRUE(sim.marble().position.allFinite()) << name(scene.params);
-        ASSERT_NE(sim.marble().phase, MarblePhase::OffBoard) << name(scene.params) << " at " << i;
-        if (sim.marble().phase == MarblePhase::Free) free_until = sim.time();
-        const Vec3 g = sim.marbleInBoard() + sim.maze().pivot();
-        for (int a = 0; a < 3; ++a)
-          outside = std::max({outside, 0.1 + kRadius - g[a], g[a] - (0.4 - kRadius)});
+    for (double step : {0.001, 0.01, 0.05})
+      for (double period : {0.3, step}) {
+        Scene scene{room, Params()};
+        scene.params.integrator = integrator;
+        scene.params.step = step;
+        scene.params.tilt_limit = 1.5;
+        scene.params.tilt_rate_limit = 0;
+        scene.params.tilt_response_time = 0;
+        Simulation sim(scene);
+        // Inside: the room's cells are grid slots 1..3 on each axis, 0.1..0.4 m; board frame is
+        // the grid less the pivot (0.25, 0.25, 0.1).
+        double outside = 0, free_until = 0;
+        for (int i = 0; i < static_cast<int>(2.0 / step); ++i) {
+          const int jump = static_cast<int>(i * step / period + 1e-9);
+          const double sign = jump % 2 == 0 ? 1 : -1;
+          sim.setTargetTilt(1.5 * sign, (jump % 4 < 2 ? 1.5 : -1.5));
+          sim.step();
+          ASSERT_TRUE(sim.marble().position.allFinite()) << name(scene.params);
+          ASSERT_NE(sim.marble().phase, MarblePhase::OffBoard) << name(scene.params) << " at " << i;
+          if (sim.marble().phase == MarblePhase::Free) free_until = sim.time();
+          const Vec3 g = sim.marbleInBoard() + sim.maze().pivot();
+          for (int a = 0; a < 3; ++a)
+            outside = std::max({outside, 0.1 + kRadius - g[a], g[a] - (0.4 - kRadius)});
+        }
+        const std::string what = name(scene.params) + " period " + std::to_string(period);
+        EXPECT_LE(outside, 0.01 * kRadius) << what;  // 1% of the radius
+        EXPECT_EQ(free_until, sim.time()) << what;   // free all along
       }
-      EXPECT_LE(outside, 0.01 * kRadius) << name(scene.params);  // 1% of the radius
-      EXPECT_EQ(free_until, sim.time()) << name(scene.params);   // free all along
-    }
 }
 
 TEST(Extremes, ABoardAKilometreFromTheOriginBehavesAsAtTheOrigin) {

@@ -12,6 +12,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import unittest
 
 import roslib.packages
@@ -94,6 +95,24 @@ class BadParamTest(unittest.TestCase):
     def test_unknown_integrator_lists_the_accepted_ones(self):
         self.check_refused("bp_six", ["_integrator:=leapfrog"], "integrator", "leapfrog",
                            "velocity_verlet", "rk4")
+
+    # The settings that cannot be simulated (issue 10), refused by the node as by the runner.
+    def test_zero_step(self):
+        self.check_refused("bp_seven", ["_step:=0.0"], "step")
+
+    def test_nan_restitution(self):
+        self.check_refused("bp_eight", ["_restitution:=nan"], "restitution")
+
+    def test_a_velocity_the_sweep_cannot_resolve(self):
+        self.check_refused("bp_nine", ["_start_velocity:=1e158,0,0"], "start_velocity")
+
+    def test_slots_of_1e308_metres_name_the_file_line_and_column(self):
+        with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as maze:
+            maze.write("grid:\n  x: [1e308, 1e308]\n  y: 0.01\n  z: 0.01\nlayout: |\n  S G\n")
+        try:
+            self.check_refused("bp_ten", ["_maze:=" + maze.name], maze.name + ":2:", "out of range")
+        finally:
+            os.unlink(maze.name)
 
 
 if __name__ == "__main__":

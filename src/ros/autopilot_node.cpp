@@ -22,6 +22,7 @@
 #include "marble_maze/autopilot.h"
 #include "marble_maze/board.h"
 #include "maze_description.h"
+#include "maze_markers.h"
 
 namespace {
 namespace mm = marble_maze;
@@ -138,18 +139,11 @@ class AutopilotNode {
   }
 
   void publishRoute() {
-    visualization_msgs::Marker m;
-    m.header.frame_id = board_frame_;
-    m.ns = "autopilot_route";
-    m.type = visualization_msgs::Marker::LINE_STRIP;
-    m.action = visualization_msgs::Marker::ADD;
-    m.pose.orientation.w = 1;
+    visualization_msgs::Marker m = marble_maze_ros::lockedMarker(
+        board_frame_, "autopilot_route", 0, visualization_msgs::Marker::LINE_STRIP);
     m.scale.x = 0.0015;  // m, the line's width
-    m.color.r = 0.25;    // light blue: the marble and its trail are orange
-    m.color.g = 0.65;
-    m.color.b = 1.0;
-    m.color.a = 0.8;
-    m.frame_locked = true;
+    m.color =
+        marble_maze_ros::colour(0.25f, 0.65f, 1.0f, 0.8f);  // light blue: the marble is orange
     for (const mm::Vec2& w : pilot_->route().waypoints) {
       geometry_msgs::Point p;
       p.x = w.x();

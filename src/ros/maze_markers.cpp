@@ -6,14 +6,8 @@
 #include <vector>
 
 namespace marble_maze_ros {
-namespace {
 
-using marble_maze::Box;
-using marble_maze::Index3;
-using marble_maze::Maze;
-using marble_maze::Vec3;
-
-std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f) {
+std_msgs::ColorRGBA colour(float r, float g, float b, float a) {
   std_msgs::ColorRGBA c;
   c.r = r;
   c.g = g;
@@ -21,6 +15,26 @@ std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f) {
   c.a = a;
   return c;
 }
+
+visualization_msgs::Marker lockedMarker(const std::string& frame, const std::string& ns, int id,
+                                        int type) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.frame_locked = true;
+  return m;
+}
+
+namespace {
+
+using marble_maze::Box;
+using marble_maze::Index3;
+using marble_maze::Maze;
+using marble_maze::Vec3;
 
 /// Boxes of one kind, grouped by size, because a CUBE_LIST has one scale for all its cubes.
 class CubeLists {
@@ -43,19 +57,13 @@ class CubeLists {
   void appendTo(const std::string& frame, visualization_msgs::MarkerArray* array) const {
     int id = 0;  // sizes in sorted order: the same maze gives the same ids
     for (const auto& entry : lists_) {
-      visualization_msgs::Marker m;
-      m.header.frame_id = frame;
-      m.ns = ns_;
-      m.id = id++;
-      m.type = visualization_msgs::Marker::CUBE_LIST;
-      m.action = visualization_msgs::Marker::ADD;
-      m.pose.orientation.w = 1.0;
+      visualization_msgs::Marker m =
+          lockedMarker(frame, ns_, id++, visualization_msgs::Marker::CUBE_LIST);
       m.scale.x = entry.second.size.x();
       m.scale.y = entry.second.size.y();
       m.scale.z = entry.second.size.z();
       m.color = colour_;
       m.points = entry.second.points;
-      m.frame_locked = true;
       array->markers.push_back(m);
     }
   }
@@ -106,16 +114,10 @@ visualization_msgs::MarkerArray mazeMarkers(const Maze& maze, const std::string&
 }
 
 visualization_msgs::Marker marbleMarker(double radius, const std::string& marble_frame) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = marble_frame;
-  m.ns = "marble";
-  m.id = 0;
-  m.type = visualization_msgs::Marker::SPHERE;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
+  visualization_msgs::Marker m =
+      lockedMarker(marble_frame, "marble", 0, visualization_msgs::Marker::SPHERE);
   m.scale.x = m.scale.y = m.scale.z = 2 * radius;
   m.color = colour(1.0f, 0.35f, 0.10f);
-  m.frame_locked = true;
   return m;
 }
 
@@ -123,16 +125,11 @@ visualization_msgs::MarkerArray liveMarkers(const Maze& maze, const std::vector<
                                             double radius, double roll, double pitch,
                                             const std::string& board_frame) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker line;
-  line.header.frame_id = board_frame;
-  line.ns = "marble_trail";
-  line.type = visualization_msgs::Marker::LINE_STRIP;
-  line.action =
-      trail.size() < 2 ? visualization_msgs::Marker::DELETE : visualization_msgs::Marker::ADD;
-  line.pose.orientation.w = 1.0;
+  visualization_msgs::Marker line =
+      lockedMarker(board_frame, "marble_trail", 0, visualization_msgs::Marker::LINE_STRIP);
+  if (trail.size() < 2) line.action = visualization_msgs::Marker::DELETE;
   line.scale.x = 0.5 * radius;  // the line's width
   line.color = colour(1.0f, 0.55f, 0.15f, 0.7f);
-  line.frame_locked = true;
   for (const Vec3& p : trail) {
     geometry_msgs::Point point;
     point.x = p.x();
@@ -144,13 +141,8 @@ visualization_msgs::MarkerArray liveMarkers(const Maze& maze, const std::vector<
 
   // The board's normal, beside the middle of its near (-y) edge: it leans as the board tilts.
   const Vec3 corner(0, -maze.extent().y() / 2 - 0.025, 0);
-  visualization_msgs::Marker arrow;
-  arrow.header.frame_id = board_frame;
-  arrow.ns = "tilt";
-  arrow.id = 0;
-  arrow.type = visualization_msgs::Marker::ARROW;
-  arrow.action = visualization_msgs::Marker::ADD;
-  arrow.pose.orientation.w = 1.0;
+  visualization_msgs::Marker arrow =
+      lockedMarker(board_frame, "tilt", 0, visualization_msgs::Marker::ARROW);
   geometry_msgs::Point base, tip;
   base.x = tip.x = corner.x();
   base.y = tip.y = corner.y();
@@ -160,7 +152,6 @@ visualization_msgs::MarkerArray liveMarkers(const Maze& maze, const std::vector<
   arrow.scale.y = 0.008;  // head diameter
   arrow.scale.z = 0.012;  // head length
   arrow.color = colour(0.3f, 0.8f, 1.0f);
-  arrow.frame_locked = true;
   array.markers.push_back(arrow);
 
   visualization_msgs::Marker text = arrow;

@@ -11,6 +11,14 @@
 
 namespace marble_maze_ros {
 
+/// A colour from its red, green, blue and opacity, each 0 to 1.
+std_msgs::ColorRGBA colour(float r, float g, float b, float a = 1.0f);
+
+/// A marker to add in `frame` (identity pose), frame-locked so that RViz moves it with the
+/// frame's tf; `ns` and `id` name it, `type` is one of visualization_msgs::Marker's.
+visualization_msgs::Marker lockedMarker(const std::string& frame, const std::string& ns, int id,
+                                        int type);
+
 /// The maze in the board frame: one CUBE_LIST per kind of tile (floor, walls, holes, start,
 /// goal) and tile size, each in its kind's namespace with a stable id, frame-locked so that RViz
 /// moves it with the board's tf.

@@ -64,5 +64,20 @@ inline Params placed(Params p, const Vec3& position, const Vec3& velocity = Vec3
   return p;
 }
 
+/// Gravity-free flight at 50 m/s, 1 m above a floor, under quadratic drag (C_d = 0.47).
+inline Params dragFlight(const Params& p) {
+  Params flight = placed(p, {0, 0, 1.0}, {50, 0, 0});
+  flight.gravity = 0;
+  flight.drag_coefficient = 0.47;
+  return flight;
+}
+
+/// Its speed after time t in closed form: v0 / (1 + k v0 t), with k = rho C_d A / (2 m).
+inline double dragFlightSpeed(const Params& p, double t) {
+  const double area = kPi * p.marble_radius * p.marble_radius;
+  const double k = p.air_density * p.drag_coefficient * area / (2 * p.marbleMass());
+  return 50 / (1 + k * 50 * t);
+}
+
 }  // namespace test
 }  // namespace marble_maze

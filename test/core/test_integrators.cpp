@@ -240,14 +240,10 @@ TEST(ExactSchemes, AFlightAfterABoardKickLandsWhenTheParabolaMeetsTheBoard) {
 /// The error in speed after 1 s of gravity-free flight under quadratic drag, against
 /// v(t) = v0 / (1 + k v0 t).
 double dragError(IntegratorKind integrator, double step) {
-  Params p = placed(scheme(integrator, Model::Smooth, step), {0, 0, 1.0}, {50, 0, 0});
-  p.gravity = 0;
-  p.drag_coefficient = 0.47;
+  const Params p = test::dragFlight(scheme(integrator, Model::Smooth, step));
   Simulation sim(test::flatFloor(10, 10, 0.01, p));
   run(&sim, 1.0);
-  const double k =
-      p.air_density * p.drag_coefficient * kPi * kRadius * kRadius / (2 * p.marbleMass());
-  return std::abs(sim.marble().velocity.x() - 50 / (1 + k * 50));
+  return std::abs(sim.marble().velocity.x() - test::dragFlightSpeed(p, 1.0));
 }
 
 TEST(Drag, EachSchemeConvergesAtItsOrder) {

@@ -283,14 +283,10 @@ TEST(Resistance, RollingResistanceDeceleratesAtFiveSeventhsCrrG) {
 TEST(Resistance, QuadraticAirDragSlowsAsOneOverOnePlusKVT) {
   // Free flight without gravity under F = -1/2 rho C_d A |v| v: v(t) = v0 / (1 + k v0 t), with
   // k = rho C_d A / (2 m).
-  Params p = placed(model(Model::Smooth), {0, 0, 1.0}, {50, 0, 0});
-  p.gravity = 0;
-  p.drag_coefficient = 0.47;
+  const Params p = test::dragFlight(model(Model::Smooth));
   Simulation sim(test::flatFloor(10, 10, 0.01, p));
   run(&sim, 1.0);
-  const double k =
-      p.air_density * p.drag_coefficient * kPi * kRadius * kRadius / (2 * p.marbleMass());
-  const double expected = 50 / (1 + k * 50 * 1.0);
+  const double expected = test::dragFlightSpeed(p, 1.0);
   EXPECT_NEAR(sim.marble().velocity.x(), expected, 0.001 * expected);  // 0.1%
   EXPECT_LT(expected, 45);  // the drag matters at this speed: the test can tell it from none
 }

@@ -3,6 +3,7 @@
 // run, so that the machine's speed cancels out.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -10,69 +11,85 @@
 #include <vector>
 
 #include "marble_maze/simulation.h"
+#include "scenes.h"
 
 namespace mm = marble_maze;
 
 namespace {
 
-/// An N x N cell maze of the classic game's proportions: outer walls, inner walls from a hash
-/// of each wall's position relative to the centre, and a closed 4 x 4 cell room in the middle
-/// where the marble runs. The room and its surroundings are the same in every size, so the
-/// marble's path is too: only the size of the maze differs between the cases.
-mm::Scene generatedScene(int cells) {
-  const int n = 2 * cells + 1;
-  const mm::AxisSlots x(0.005, 0.0221, n), y(0.005, 0.02325, n), z(0.005, 0.012, 2);
-  mm::Maze maze(x, y, z);
-  const int c = cells / 2 * 2 + 1;  // an odd (cell) slot near the centre
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      maze.setSolid({i, j, 0}, true);
-      const bool post = i % 2 == 0 && j % 2 == 0;
-      const bool wall_slot = (i % 2 == 0) != (j % 2 == 0);
-      const bool outer = i == 0 || j == 0 || i == n - 1 || j == n - 1;
-      const unsigned hash =
-          static_cast<unsigned>((i - c) * 73856093) ^ static_cast<unsigned>((j - c) * 19349663);
-      const bool room_wall = (std::abs(i - c) == 5 && std::abs(j - c) <= 5) ||
-                             (std::abs(j - c) == 5 && std::abs(i - c) <= 5);
-      const bool inside_room = std::abs(i - c) < 5 && std::abs(j - c) < 5;
-      const bool inner_wall = wall_slot && !inside_room && hash % 3 == 0;
-      if (post || outer || room_wall || inner_wall) maze.setSolid({i, j, 1}, true);
-    }
-  maze.setStart({c, c});
-  maze.setName(std::to_string(cells) + "x" + std::to_string(cells));
-  return {maze, mm::Params()};
-}
-
+/// A generated maze of `cells` x `cells` (negative: an open floor of that size), built once.
 const mm::Scene& sceneOfSize(int cells) {
   static std::map<int, mm::Scene> scenes;
   auto it = scenes.find(cells);
-  if (it == scenes.end()) it = scenes.emplace(cells, generatedScene(cells)).first;
+  if (it == scenes.end())
+    it = scenes
+             .emplace(cells,
+                      mm::Scene{mm::test::generatedMaze(std::abs(cells), cells > 0), mm::Params()})
+             .first;
   return it->second;
 }
 
 /// Steps the simulation under a circling tilt (one turn in about 3 s), which keeps the marble
-/// rolling into walls. The tilts are worked out beforehand so that only the step is timed.
-void runSteps(benchmark::State& state, mm::Simulation* sim) {
+/// rolling into walls, and starts it over when it finishes or every `restart_every` steps. The
+/// tilts are worked out beforehand so that only the step is timed.
+void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_every = 0) {
   std::vector<std::pair<double, double>> tilts(3142);
   for (std::size_t i = 0; i < tilts.size(); ++i) {
     const double t = static_cast<double>(i) * sim->params().step;
     tilts[i] = {0.1 * std::sin(2.0 * t), 0.1 * std::cos(2.0 * t)};
   }
+  const mm::StepCounts before = sim->counts();
   std::size_t n = 0;
   for (auto _ : state) {
     const auto& [roll, pitch] = tilts[n++ % tilts.size()];
     sim->setTargetTilt(roll, pitch);
     sim->step();
-    if (sim->marble().phase != mm::MarblePhase::Free) sim->reset();
+    if (sim->marble().phase != mm::MarblePhase::Free || (restart_every && n % restart_every == 0))
+      sim->reset();
   }
-  state.counters["substeps"] = sim->params().substeps;
+  const mm::StepCounts& after = sim->counts();
+  const double steps = static_cast<double>(std::max<std::size_t>(n, 1));
+  state.counters["substeps"] = static_cast<double>(after.substeps - before.substeps) / steps;
+  state.counters["tiles/step"] =
+      static_cast<double>(after.tiles_swept - before.tiles_swept) / steps;
 }
 
+/// The baseline: the step's fixed part. The marble falls from 1 m above the tilting board, far
+/// from every tile, for 0.4 s at a time.
+void BM_FreeFlight(benchmark::State& state) {
+  mm::Scene scene = sceneOfSize(10);
+  scene.params.has_start_position = true;
+  scene.params.start_position = mm::Vec3(0, 0, 1.0);
+  mm::Simulation sim(scene);
+  runSteps(state, &sim, 400);
+}
+BENCHMARK(BM_FreeFlight);
+
+/// Rolling on an open floor of 60 x 60 cells inside the outer walls, started over every second:
+/// under the circling tilt it never goes faster than 0.7 m/s, so it never reaches the walls 0.8 m
+/// away.
+void BM_OpenFloor(benchmark::State& state) {
+  mm::Simulation sim(sceneOfSize(-60));
+  runSteps(state, &sim, 1000);
+}
+BENCHMARK(BM_OpenFloor);
+
+/// The generated mazes: the cost must not grow with their size, nor jump at any one size.
 void BM_StepByMazeSize(benchmark::State& state) {
   mm::Simulation sim(sceneOfSize(static_cast<int>(state.range(0))));
   runSteps(state, &sim);
 }
-BENCHMARK(BM_StepByMazeSize)->ArgName("cells")->Arg(10)->Arg(100)->Arg(1000);
+BENCHMARK(BM_StepByMazeSize)
+    ->ArgName("cells")
+    ->Arg(10)
+    ->Arg(100)
+    ->Arg(200)
+    ->Arg(295)
+    ->Arg(299)
+    ->Arg(300)
+    ->Arg(400)
+    ->Arg(500)
+    ->Arg(1000);
 
 void BM_StepByPhysics(benchmark::State& state) {
   mm::Scene scene = sceneOfSize(10);
@@ -128,12 +145,17 @@ class RatioReporter : public benchmark::ConsoleReporter {
   }
   void Finalize() override {
     ConsoleReporter::Finalize();
-    std::printf("\n%-40s %-26s %12s %8s\n", "case", "", "ns/step", "ratio");
+    // The free flight is every case's baseline, and the first case of a group its group's.
+    double flight = 0;
+    for (const Row& row : rows_)
+      if (row.group == "BM_FreeFlight") flight = row.ns;
+    std::printf("\n%-40s %-26s %10s %10s %12s\n", "case", "", "ns/step", "in group",
+                "/ free flight");
     std::map<std::string, double> baseline;
     for (const Row& row : rows_) {
       const double base = baseline.emplace(row.group, row.ns).first->second;
-      std::printf("%-40s %-26s %12.1f %8.2f\n", row.name.c_str(), row.label.c_str(), row.ns,
-                  row.ns / base);
+      std::printf("%-40s %-26s %10.1f %10.2f %12.2f\n", row.name.c_str(), row.label.c_str(), row.ns,
+                  row.ns / base, flight > 0 ? row.ns / flight : 0.0);
     }
   }
 

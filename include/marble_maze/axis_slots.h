@@ -9,7 +9,8 @@ namespace marble_maze {
 class AxisSlots {
  public:
   AxisSlots() = default;
-  AxisSlots(double thin, double wide, int count) : thin_(thin), wide_(wide), count_(count) {}
+  AxisSlots(double thin, double wide, int count)
+      : thin_(thin), wide_(wide), count_(count), per_period_(1.0 / (thin + wide)) {}
   static AxisSlots uniform(double width, int count) { return AxisSlots(width, width, count); }
 
   int count() const { return count_; }
@@ -31,13 +32,23 @@ class AxisSlots {
   /// Index of the slot containing coordinate x, unclamped (negative or >= count outside the grid).
   /// A point on a boundary belongs to the upper slot.
   int slotAt(double x) const {
-    double pairs = x / period();
+    // A product, not a quotient: this runs several times a step, and a division costs as much
+    // as the rest of it.
+    double pairs = x * per_period_;
     // Clamped so that the conversion to int is defined; NaN fails the first test and goes low.
     if (!(pairs > -1e8)) pairs = -1e8;
     if (pairs > 1e8) pairs = 1e8;
     int whole = static_cast<int>(pairs);  // towards zero; floor below, without a libm call
     if (whole > pairs) --whole;
-    const double rest = x - whole * period();
+    double rest = x - whole * period();
+    // The product may round across a period's boundary: the remainder decides.
+    if (rest < 0) {
+      --whole;
+      rest = x - whole * period();
+    } else if (rest >= period()) {
+      ++whole;
+      rest = x - whole * period();
+    }
     return 2 * whole + (rest >= thin_ ? 1 : 0);
   }
 
@@ -47,6 +58,7 @@ class AxisSlots {
   double thin_ = 1.0;
   double wide_ = 1.0;
   int count_ = 0;
+  double per_period_ = 0.5;  // 1 / period()
 };
 
 }  // namespace marble_maze

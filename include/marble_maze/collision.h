@@ -10,16 +10,28 @@
 
 namespace marble_maze {
 
-/// Where the tile grid is in the world at one instant: its origin O' and basis [e_x' e_y' e_z'].
+/// Where the tile grid is in the world at one instant: the point it turns about and its basis
+/// [e_x' e_y' e_z'].
+///
+/// Eq. (4) is taken about that point rather than about the grid's corner O': the rotation then
+/// acts on the offset from the pivot, small where the marble plays, not on the offset from the
+/// corner, which grows with the maze. A coordinate across the floor of a large maze rounds no
+/// worse than it must, and the height above the floor carries no rounding that grows with the
+/// maze's size (a marble resting on the floor of a 300 x 300 cell maze used to sit a rounding
+/// error of its rotated 4 m offset below the floor's top, meet the floor again every step, and
+/// sweep seven times the tiles of a smaller maze).
 struct GridFrame {
   Mat3 rotation = Mat3::Identity();  ///< columns are e_x', e_y', e_z' in the world
-  Vec3 origin = Vec3::Zero();        ///< world position of the grid's corner O'
-  Vec3 pivot = Vec3::Zero();         ///< world position the board turns about
+  Vec3 pivot = Vec3::Zero();         ///< world position of the point the board turns about
+  Vec3 grid_pivot = Vec3::Zero();    ///< that point in grid coordinates
   Vec3 angular_velocity = Vec3::Zero();
 
   /// Eq. (4): v_P' = [e_x' e_y' e_z']^-1 (v_P - v_O'); the basis is orthonormal, so ^-1 = ^T.
-  Vec3 toGrid(const Vec3& world) const { return rotation.transpose() * (world - origin); }
-  Vec3 toWorld(const Vec3& grid) const { return origin + rotation * grid; }
+  Vec3 toGrid(const Vec3& world) const { return toBoard(world) + grid_pivot; }
+  Vec3 toWorld(const Vec3& grid) const { return fromBoard(grid - grid_pivot); }
+  /// Board coordinates: the grid's axes, from the pivot.
+  Vec3 toBoard(const Vec3& world) const { return rotation.transpose() * (world - pivot); }
+  Vec3 fromBoard(const Vec3& board) const { return pivot + rotation * board; }
   /// Velocity of the board's material point at a world position: w x (p - pivot).
   Vec3 surfaceVelocity(const Vec3& world) const { return angular_velocity.cross(world - pivot); }
 };
@@ -52,7 +64,20 @@ struct Sweep {
   /// Across a tile it touches, a path slower than this (per unit s) rests on it: a path leaving
   /// faster may come back to it within the stretch, a small bounce.
   double resting_rate = 0;
+  /// Planes the path keeps to: those of the contacts that hold the marble, which it neither
+  /// leaves nor goes into over the stretch (n . x >= offset on its side). A tile wholly behind
+  /// one can only be grazed, never met: the floor's other tiles under a rolling marble, a wall's
+  /// under one that slides along it. At most three.
+  int planes = 0;
+  Vec3 plane_normal[3];
+  double plane_offset[3] = {0, 0, 0};
 
+  /// Keeps to the plane through `point` with the (unit) `normal`, when there is room for it.
+  void keepTo(const Vec3& normal, const Vec3& point) {
+    if (planes == 3) return;
+    plane_normal[planes] = normal;
+    plane_offset[planes++] = normal.dot(point);
+  }
   Vec3 at(double s) const { return from + s * (path + s * bend); }
   Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds
 };
@@ -61,6 +86,8 @@ struct Sweep {
 struct SweepHit {
   double fraction = 1;  ///< s of the impact, 0..1
   Contact contact;      ///< at the moment of impact
+  /// The solid tiles the walk looked at, hit or not: its cost, which must not grow with the maze.
+  int tiles_visited = 0;
 };
 
 /// Time of impact: the first tile the sweep hits while approaching it, or none. Tiles within

@@ -26,8 +26,14 @@ class Maze {
   }
 
   /// Whether tile t is solid; tiles outside the grid are empty.
-  bool solid(const Index3& t) const { return contains(t) && solid_[offset(t)] != 0; }
-  void setSolid(const Index3& t, bool solid) { solid_[offset(t)] = solid ? 1 : 0; }
+  bool solid(const Index3& t) const { return contains(t) && (tiles_[offset(t)] & kSolid) != 0; }
+  void setSolid(const Index3& t, bool solid);
+  /// Whether the neighbour of tile t (inside the grid) across its face on `side` (-1 or +1) of
+  /// `axis` is empty: a solid tile's face there is on the surface of the union of tiles. Kept
+  /// with each tile, so that the contact and sweep tests look up no neighbour.
+  bool faceOpen(const Index3& t, int axis, int side) const {
+    return (tiles_[offset(t)] & faceBit(axis, side)) != 0;
+  }
 
   /// The box of tile t in grid coordinates.
   Box tileBox(const Index3& t) const {
@@ -35,9 +41,9 @@ class Maze {
             {bounds_[0][t.x() + 1], bounds_[1][t.y() + 1], bounds_[2][t.z() + 1]}};
   }
   /// The whole grid's extent in grid coordinates.
-  Vec3 extent() const { return {axes_[0].length(), axes_[1].length(), axes_[2].length()}; }
+  const Vec3& extent() const { return extent_; }
   /// The board's pivot in grid coordinates: the centre of the floor slab's top surface.
-  Vec3 pivot() const { return {extent().x() / 2, extent().y() / 2, floorTop()}; }
+  const Vec3& pivot() const { return pivot_; }
   double floorTop() const { return axes_[2].upper(0); }
 
   /// Cells are (i, j) columns of the grid; a start, a goal or a hole is one column.
@@ -61,14 +67,23 @@ class Maze {
   void setName(const std::string& name) { name_ = name; }
 
  private:
+  // A tile's byte: whether it is solid, and for each of its faces whether the neighbour there
+  // is empty.
+  static constexpr std::uint8_t kSolid = 0x80;
+  static constexpr std::uint8_t kAllFacesOpen = 0x3f;
+  static std::uint8_t faceBit(int axis, int side) {
+    return static_cast<std::uint8_t>(1u << (2 * axis + (side > 0 ? 1 : 0)));
+  }
   std::size_t offset(const Index3& t) const {
     return (static_cast<std::size_t>(t.z()) * size_.y() + t.y()) * size_.x() + t.x();
   }
 
   AxisSlots axes_[3];
   Index3 size_ = Index3::Zero();
+  Vec3 extent_ = Vec3::Zero();  // looked up on the hot path
+  Vec3 pivot_ = Vec3::Zero();
   std::vector<double> bounds_[3];  // slot boundaries per axis, looked up on the hot path
-  std::vector<std::uint8_t> solid_;
+  std::vector<std::uint8_t> tiles_;
   Cell start_;
   std::vector<Cell> goals_;
   std::string name_;

@@ -38,6 +38,14 @@ struct SimulationState {
   std::uint64_t steps = 0;
 };
 
+/// What the steps have cost, counted rather than timed (a machine's speed cannot move a count):
+/// the substeps taken, the swept tests run and the solid tiles those looked at.
+struct StepCounts {
+  std::uint64_t substeps = 0;
+  std::uint64_t sweeps = 0;
+  std::uint64_t tiles_swept = 0;
+};
+
 /// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical
 /// states; nothing depends on wall time, addresses or threads.
 ///
@@ -97,6 +105,8 @@ class Simulation {
   double boardWork() const { return board_work_; }
   /// The marble's start position in the board frame.
   Vec3 startInBoard() const;
+  /// The cost of the steps since the simulation was made (not part of its state).
+  const StepCounts& counts() const { return counts_; }
 
  private:
   /// The marble's dynamics against the contacts of the moment, as the integrators sample them.
@@ -136,6 +146,7 @@ class Simulation {
   double time_ = 0;
   double board_work_ = 0;
   std::uint64_t steps_ = 0;
+  StepCounts counts_;
   std::vector<Event> events_;
   std::vector<Contact> contacts_;         // reused: no allocation per step
   std::vector<ContactOutcome> outcomes_;  // of the last impact

@@ -17,6 +17,13 @@ struct TileRange {
   Index3 last;
 };
 
+/// Whether a grid-frame box [lower, upper] reaches into the grid at all: a marble far above the
+/// board (in flight) looks up no slot.
+bool overlapsGrid(const Maze& maze, const Vec3& lower, const Vec3& upper) {
+  const Vec3 extent = maze.extent();
+  return (upper.array() >= 0).all() && (lower.array() <= extent.array()).all();
+}
+
 TileRange tileRange(const Maze& maze, const Vec3& lower, const Vec3& upper) {
   TileRange r;
   for (int a = 0; a < 3; ++a) {
@@ -46,13 +53,8 @@ Vec3 closestPoint(const Box& box, const Vec3& p) {
 /// edges along a seam never produce a contact.
 bool facesOpen(const Maze& maze, const Index3& t, const Box& box, const Vec3& c) {
   for (int a = 0; a < 3; ++a) {
-    int side = 0;
-    if (c[a] < box.lower[a]) side = -1;
-    if (c[a] > box.upper[a]) side = 1;
-    if (side == 0) continue;
-    Index3 neighbour = t;
-    neighbour[a] += side;
-    if (maze.solid(neighbour)) return false;
+    if (c[a] < box.lower[a] && !maze.faceOpen(t, a, -1)) return false;
+    if (c[a] > box.upper[a] && !maze.faceOpen(t, a, 1)) return false;
   }
   return true;
 }
@@ -64,9 +66,7 @@ bool nearestOpenFace(const Maze& maze, const Index3& t, const Box& box, const Ve
   *distance = kNone;
   for (int a = 0; a < 3; ++a)
     for (int side : {-1, 1}) {
-      Index3 neighbour = t;
-      neighbour[a] += side;
-      if (maze.solid(neighbour)) continue;
+      if (!maze.faceOpen(t, a, side)) continue;
       const double d = side < 0 ? c[a] - box.lower[a] : box.upper[a] - c[a];
       if (d < *distance) {
         *distance = d;
@@ -156,6 +156,38 @@ bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow,
   return true;
 }
 
+/// Whether the box lies wholly behind one of the planes the path keeps to. A box that reaches
+/// less than the contact margin in front of one counts as behind it: the marble could at most
+/// touch it by that much, a contact the next substep finds.
+bool behindAPlane(const Sweep& w, const Box& box) {
+  for (int k = 0; k < w.planes; ++k) {
+    const Vec3& n = w.plane_normal[k];
+    double front = 0;  // the box's farthest reach along n
+    for (int a = 0; a < 3; ++a) front += n[a] * (n[a] > 0 ? box.upper[a] : box.lower[a]);
+    if (front <= w.plane_offset[k] + w.margin) return true;
+  }
+  return false;
+}
+
+/// Narrows a range of tiles to those in front of the planes the path keeps to that face along a
+/// grid axis (a floor, a wall): the tiles behind such a plane are not even looked up.
+void narrowToPlanes(const Maze& maze, const Sweep& w, TileRange* range) {
+  for (int k = 0; k < w.planes; ++k) {
+    const Vec3& n = w.plane_normal[k];
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, d = (a + 2) % 3;
+      if (!(std::abs(n[a]) >= 1 - 1e-12 && std::abs(n[b]) <= 1e-12 && std::abs(n[d]) <= 1e-12))
+        continue;
+      // Off-axis parts below 1e-12 move a tile's reach by far less than the margin.
+      const double plane = w.plane_offset[k] / n[a];
+      if (n[a] > 0)
+        range->first[a] = std::max(range->first[a], maze.axis(a).slotAt(plane + w.margin));
+      else
+        range->last[a] = std::min(range->last[a], maze.axis(a).slotAt(plane - w.margin));
+    }
+  }
+}
+
 /// Whether a bent path leaving a tile it touches (`away`: from the tile's nearest point to the
 /// start) can come back to it within the stretch: it must be leaving clearly (a contact the
 /// marble rolls on has no rate across it but for rounding) and bending back fast enough, as a
@@ -230,11 +262,7 @@ bool bentSphereBoxImpact(const Maze& maze, const Index3& t, const Sweep& w, cons
                          double before, double* time, Vec3* point) {
   // A face shared with a solid neighbour is inside the union of tiles, and so is every edge and
   // corner on it: no path meets them first (the neighbour's own surface is met instead).
-  const auto open = [&](int a, int side) {
-    Index3 n = t;
-    n[a] += side;
-    return !maze.solid(n);
-  };
+  const auto open = [&](int a, int side) { return maze.faceOpen(t, a, side); };
   const double r = w.radius;
   double best = before;
   Vec3 lo, hi;  // the path's bounding box: a feature beyond it is never reached
@@ -348,7 +376,10 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   const Vec3 c = frame.toGrid(centre);  // step 1: eq. (4)
   const double reach = radius + margin;
   const Vec3 extent = Vec3::Constant(reach);
-  // Steps 2 and 3: the index range of the marble's extent, and the tiles that exist in it.
+  if (!overlapsGrid(maze, c - extent, c + extent)) return;
+  // Steps 2 and 3: the index range of the marble's extent, and the tiles that exist in it. The
+  // contacts are gathered in the grid frame (normal, nearest point) and taken into the world
+  // once each, after coplanar tiles have been merged.
   forEachSolidTile(
       maze, tileRange(maze, c - extent, c + extent), [&](const Index3& t, const Box& box) {
         Vec3 q = closestPoint(box, c);  // step 4: the box's nearest point to the centre
@@ -357,26 +388,29 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
         if (distance2 >= reach * reach) return;  // step 5: no contact beyond the radius
         if (!facesOpen(maze, t, box, c)) return;
         Contact contact;
-        Vec3 normal;
         if (distance2 > 0) {
           const double distance = std::sqrt(distance2);
-          normal = offset / distance;
+          contact.normal = offset / distance;
           contact.depth = radius - distance;
         } else {
           double inside;  // the centre is in the tile: leave through its nearest open face
-          if (!nearestOpenFace(maze, t, box, c, &normal, &inside)) return;
-          q = c + normal * inside;
+          if (!nearestOpenFace(maze, t, box, c, &contact.normal, &inside)) return;
+          q = c + contact.normal * inside;
           contact.depth = radius + inside;
         }
-        contact.normal = frame.rotation * normal;
-        contact.point = frame.toWorld(q);
-        contact.surface_velocity = frame.surfaceVelocity(contact.point);
+        contact.point = q;
         contact.tile = t;
         addContact(contacts, contact);
       });
+  for (Contact& contact : *contacts) {
+    contact.normal = frame.rotation * contact.normal;
+    contact.point = frame.toWorld(contact.point);
+    contact.surface_velocity = frame.surfaceVelocity(contact.point);
+  }
 }
 
 bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {
+  hit->tiles_visited = 0;
   const Vec3 chord = w.path + w.bend;
   const double sag = 0.25 * w.bend.norm();  // the farthest a bent path strays from its chord
   const bool bent = sag > 0;
@@ -385,6 +419,13 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   if (!(length > 0)) return false;
   const double radius = w.radius;
   const double touching = (radius + w.margin) * (radius + w.margin);
+  // The whole path grown by the radius: when it stays clear of the grid no tile is looked up.
+  {
+    Vec3 lo, hi;
+    for (int a = 0; a < 3; ++a) coordinateRange(w, a, &lo[a], &hi[a]);
+    const Vec3 grow = Vec3::Constant(radius + w.margin);
+    if (!overlapsGrid(maze, lo - grow, hi + grow)) return false;
+  }
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();
@@ -395,8 +436,11 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     const Vec3 a = w.at(s0), b = w.at(s1);
     // A piece strays from its own chord by the path's sag times its share of s squared.
     const Vec3 reach = Vec3::Constant(radius + sag / (static_cast<double>(pieces) * pieces));
-    const TileRange range = tileRange(maze, a.cwiseMin(b) - reach, a.cwiseMax(b) + reach);
+    TileRange range = tileRange(maze, a.cwiseMin(b) - reach, a.cwiseMax(b) + reach);
+    narrowToPlanes(maze, w, &range);
     forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
+      ++hit->tiles_visited;
+      if (behindAPlane(w, box)) return;
       // A tile touched at the start is a contact, left to findContacts, unless a bent path is
       // leaving it: that path may come back to it in this stretch (a small bounce).
       const Vec3 away = w.from - closestPoint(box, w.from);
@@ -422,7 +466,9 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
       if (!facesOpen(maze, t, box, c)) return;  // a seam: the neighbour's face is hit instead
       const Vec3 normal = (c - q).normalized();
       const Vec3 rate = w.rate(time);
-      if (normal.dot(rate) >= -1e-12 * rate.norm()) return;  // grazing: no impact
+      // Grazing: an approach slower than resting is a contact the next substep finds, not an
+      // impact (the path rolls over a seam onto a coplanar tile at rounding's height).
+      if (normal.dot(rate) >= -std::max(w.resting_rate, 1e-12 * rate.norm())) return;
       best = time;
       best_tile = t;
       best_point = q;

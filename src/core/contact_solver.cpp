@@ -9,6 +9,8 @@ namespace {
 // Gauss-Seidel sweeps over the contacts. One contact, or contacts at right angles as on a tile
 // grid, are solved exactly by one sweep; a few more settle edges and corners.
 constexpr int kMaxIterations = 8;
+// A velocity change below this (m/s) is rounding: the sweeps have converged.
+constexpr double kConverged = 1e-12;
 
 /// Kinetic energy relative to the mean velocity of the touched surfaces.
 double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity,
@@ -79,12 +81,13 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   friction_impulses_.assign(contacts.size(), Vec3::Zero());
   for (auto& o : *outcomes) o.normal_impulse = 0;
   const double inv_mass = 1.0 / body->mass;
+  const double inv_inertia = 1.0 / body->inertia;
   const double r = body->radius;
-  // Effective inverse mass of a sphere for a tangential impulse at its surface.
-  const double inv_tangent_mass = inv_mass + r * r / body->inertia;
+  // Effective mass of a sphere for a tangential impulse at its surface.
+  const double tangent_mass = 1.0 / (inv_mass + r * r * inv_inertia);
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
-    double largest_change = 0;  // of any impulse in this sweep, N s
+    double largest_change2 = 0;  // the square of any impulse's change in this sweep, (N s)^2
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       const Contact& c = contacts[i];
       ContactOutcome& o = (*outcomes)[i];
@@ -93,25 +96,27 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
       const double target = (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
       const double normal_speed = (body->velocity - c.surface_velocity).dot(c.normal);
       const double impulse = std::max(0.0, o.normal_impulse + (target - normal_speed) * body->mass);
-      body->velocity += (impulse - o.normal_impulse) * inv_mass * c.normal;
-      largest_change = std::max(largest_change, std::abs(impulse - o.normal_impulse));
+      const double normal_change = impulse - o.normal_impulse;
+      body->velocity += normal_change * inv_mass * c.normal;
+      largest_change2 = std::max(largest_change2, normal_change * normal_change);
       o.normal_impulse = impulse;
       if (!rolling) continue;
       // Coulomb friction at the contact point: stop slipping, within mu times the normal impulse.
       const Vec3 arm = -r * c.normal;
       const Vec3 slip = body->velocity + body->angular_velocity.cross(arm) - c.surface_velocity;
       const Vec3 tangential_slip = slip - slip.dot(c.normal) * c.normal;
-      Vec3 total = friction_impulses_[i] - tangential_slip / inv_tangent_mass;
+      Vec3 total = friction_impulses_[i] - tangential_slip * tangent_mass;
       const double limit = params_.friction * impulse;
-      if (total.norm() > limit) total *= limit / total.norm();
+      const double size2 = total.squaredNorm();
+      if (size2 > limit * limit) total *= limit / std::sqrt(size2);
       const Vec3 change = total - friction_impulses_[i];
       friction_impulses_[i] = total;
       body->velocity += change * inv_mass;
-      body->angular_velocity += arm.cross(change) / body->inertia;
-      largest_change = std::max(largest_change, change.norm());
+      body->angular_velocity += arm.cross(change) * inv_inertia;
+      largest_change2 = std::max(largest_change2, change.squaredNorm());
     }
     // Converged: a further sweep would change no velocity by more than 1e-12 m/s.
-    if (largest_change * inv_mass < 1e-12) break;
+    if (largest_change2 * inv_mass * inv_mass < kConverged * kConverged) break;
   }
 }
 

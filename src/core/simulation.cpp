@@ -105,8 +105,8 @@ std::string Simulation::whyNotPlaceable(const Vec3& position_in_board) const {
   const Vec3 extent = maze_.extent();
   if (grid.x() < 0 || grid.y() < 0 || grid.x() > extent.x() || grid.y() > extent.y())
     return "off the board (outside its x-y extent)";
-  GridFrame level;  // the board at rest, in its own frame: the grid's corner at -pivot
-  level.origin = -maze_.pivot();
+  GridFrame level;  // the board at rest, in its own frame
+  level.grid_pivot = maze_.pivot();
   std::vector<Contact> touching;
   findContacts(maze_, level, position_in_board, params_.marble_radius, 0, &touching);
   for (const Contact& c : touching)
@@ -122,8 +122,7 @@ std::string Simulation::whyNotPlaceable(const Vec3& position_in_board) const {
 GridFrame Simulation::gridFrame() const {
   GridFrame frame;
   frame.rotation = board_.rotation();
-  frame.pivot = Vec3::Zero();
-  frame.origin = -(frame.rotation * maze_.pivot());
+  frame.grid_pivot = maze_.pivot();  // the board's pivot, at the world's origin
   frame.angular_velocity = board_.angularVelocity();
   return frame;
 }
@@ -137,7 +136,7 @@ Vec3 Simulation::startInBoard() const {
 }
 
 Vec3 Simulation::marbleInBoard() const {
-  return frame_.toGrid(marble_.position) - maze_.pivot();
+  return frame_.toBoard(marble_.position);
 }
 
 void Simulation::reset() {
@@ -150,7 +149,7 @@ void Simulation::reset() {
 void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity,
                              const Vec3& angular_velocity) {
   marble_ = Marble();
-  marble_.position = frame_.toWorld(position_in_board + maze_.pivot());
+  marble_.position = frame_.fromBoard(position_in_board);
   marble_.velocity = velocity;
   marble_.angular_velocity = angular_velocity;
   board_work_ = 0;
@@ -191,6 +190,7 @@ void Simulation::step() {
 }
 
 void Simulation::substep(double h, double start_time) {
+  ++counts_.substeps;
   const GridFrame start = frame_;  // the board's pose at the start of the substep
   board_.advance(h, kMostTurn);
   frame_ = gridFrame();
@@ -310,6 +310,7 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const 
     const Vec3 normal = start.rotation.transpose() * acting_[i].normal;
     sweep->path -= sweep->path.dot(normal) * normal;
     sweep->bend -= sweep->bend.dot(normal) * normal;
+    sweep->keepTo(normal, start.toGrid(acting_[i].point));
   }
 }
 
@@ -344,7 +345,10 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
       sweep.path = frame_.rotation.transpose() * (path.displacement() - carried) - sweep.bend;
     }
     SweepHit hit;
-    if (!timeOfImpact(maze_, frame_, sweep, &hit)) {
+    const bool hits = timeOfImpact(maze_, frame_, sweep, &hit);
+    ++counts_.sweeps;
+    counts_.tiles_swept += hit.tiles_visited;
+    if (!hits) {
       marble_.position = frame_.toWorld(sweep.at(1));
       marble_.velocity = path.end.linear;
       marble_.angular_velocity = path.end.angular;
@@ -368,16 +372,22 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
 void Simulation::checkFinish(double time) {
   const Vec3 p = frame_.toGrid(marble_.position);
   const double r = params_.marble_radius;
+  const double floor_top = maze_.floorTop();
+  // Only a marble low enough to finish needs its column looked up.
+  const bool below = p.z() < floor_top - r;  // wholly below the playing surface
+  const bool at_goal_height = !maze_.goals().empty() && p.z() < floor_top + 2 * r;
+  const bool finite = marble_.position.allFinite();
+  if (finite && !below && !at_goal_height) return;
   const Maze::Cell cell = maze_.cellAt(p);
   const Index3 floor_tile(cell.i, cell.j, 0);
-  if (!marble_.position.allFinite()) {
+  if (!finite) {
     hold(MarblePhase::OffBoard, EventKind::OffBoard, floor_tile, time);
-  } else if (p.z() < maze_.floorTop() - r) {  // wholly below the playing surface
+  } else if (below) {
     if (maze_.isHole(cell))
       hold(MarblePhase::InHole, EventKind::Hole, floor_tile, time);
     else
       hold(MarblePhase::OffBoard, EventKind::OffBoard, floor_tile, time);
-  } else if (maze_.isGoal(cell) && p.z() < maze_.floorTop() + 2 * r) {
+  } else if (maze_.isGoal(cell)) {
     hold(MarblePhase::AtGoal, EventKind::Goal, floor_tile, time);
   }
 }
@@ -385,7 +395,7 @@ void Simulation::checkFinish(double time) {
 void Simulation::hold(MarblePhase phase, EventKind kind, const Index3& tile, double time) {
   events_.push_back({time, kind, tile, marble_.velocity.norm()});
   marble_.phase = phase;
-  if (!marble_.position.allFinite()) marble_.position = frame_.toWorld(maze_.pivot());
+  if (!marble_.position.allFinite()) marble_.position = frame_.pivot;
   held_in_grid_ = frame_.toGrid(marble_.position);
   marble_.velocity = frame_.surfaceVelocity(marble_.position);
   marble_.angular_velocity.setZero();

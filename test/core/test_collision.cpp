@@ -2,6 +2,9 @@
 // corners, seams, large marbles, and the swept test.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "marble_maze/collision.h"
 #include "scenes.h"
 
@@ -112,13 +115,38 @@ TEST(FindContacts, FollowsTheBoardFrameByEquationFour) {
   const Maze maze = grid({{5, 5, 0}});
   GridFrame frame;
   frame.rotation = Eigen::AngleAxisd(0.3, Vec3::UnitY()).toRotationMatrix();
-  frame.origin = Vec3(0.1, -0.2, 0.05);
+  frame.pivot = Vec3(0.1, -0.2, 0.05);
   const Vec3 grid_centre(0.055, 0.055, 0.014);
   std::vector<Contact> contacts;
   findContacts(maze, frame, frame.toWorld(grid_centre), 0.005, 1e-9, &contacts);
   ASSERT_EQ(contacts.size(), 1u);
   EXPECT_NEAR((contacts[0].normal - frame.rotation.col(2)).norm(), 0, kTol);
   EXPECT_NEAR(contacts[0].depth, 0.001, kTol);
+}
+
+TEST(GridFrame, HeightsCarryNoRoundingThatGrowsWithTheMaze) {
+  // A marble near the pivot of mazes 0.3 m, 8 m and 27 m wide, on a board tilted up to 0.1 rad:
+  // its height in the grid rounds as it does near a small grid's corner (eq. (4) about the
+  // pivot; about the grid's corner it rounded by 3e-16 m in the 8 m maze and 1e-15 m in the
+  // 27 m one).
+  for (const double half : {0.14, 4.07, 13.6}) {
+    GridFrame frame;
+    frame.grid_pivot = Vec3(half, half, 0.005);
+    double worst = 0;
+    for (int k = 0; k < 1000; ++k) {
+      const double roll = 0.1 * std::sin(k), pitch = 0.1 * std::cos(1.7 * k);
+      frame.rotation =
+          (Eigen::AngleAxisd(pitch, Vec3::UnitY()) * Eigen::AngleAxisd(roll, Vec3::UnitX()))
+              .toRotationMatrix();
+      const Vec3 world = frame.rotation * Vec3(0.01 * std::sin(3.1 * k), 0.01, 0.006);
+      long double exact = 0;  // the height above the pivot, z' . p, in extended precision
+      for (int i = 0; i < 3; ++i)
+        exact += static_cast<long double>(frame.rotation(i, 2)) * world[i];
+      worst =
+          std::max(worst, std::abs(static_cast<double>(frame.toGrid(world).z() - 0.005L - exact)));
+    }
+    EXPECT_LT(worst, 5e-18) << "a grid " << 2 * half << " m wide";
+  }
 }
 
 TEST(SphereBoxImpact, FaceEdgeAndCornerTimesMatchHandWorkedValues) {

@@ -1,6 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
-.PHONY: all deps build test demo bench tradeoff soak screenshot lint format clean ws
+.PHONY: all deps build test demo bench tradeoff soak fuzz screenshot lint format clean ws
 
 all: build
 
@@ -28,6 +28,10 @@ soak: deps
 	@bash scripts/build.sh tests
 	@. scripts/workspace.sh && MARBLE_MAZE_SOAK_STEPS=10000000 \
 	  "$$WS/devel/lib/marble_maze/test_core" --gtest_filter='Soak.*'
+
+# The fuzzers for longer: FUZZ_SECONDS each (default 300; make test runs them 30 s each).
+fuzz: deps
+	@bash scripts/fuzz.sh $${FUZZ_SECONDS:-300}
 
 # The workspace's path, for: source "$$(make -s ws)/devel/setup.bash"
 ws:

@@ -1,7 +1,7 @@
 """Counts the test cases in JUnit XML result files and prints "N passed, N failed".
 
 Exits 1 when any case failed, when a test left no result (catkin writes a MISSING-*.xml then),
-or when no case ran at all. Usage: count_results.py DIR [--also-failed WHAT]
+or when no case ran at all. Usage: count_results.py DIR [--also-failed WHAT]...
 """
 import pathlib
 import sys
@@ -38,9 +38,10 @@ def count(directory):
 def main():
     args = sys.argv[1:]
     passed, failed, names = count(args[0] if args else ".")
-    if "--also-failed" in args:  # a step that failed before leaving results, e.g. the build
-        failed += 1
-        names.append(args[args.index("--also-failed") + 1])
+    for i, arg in enumerate(args):  # steps that failed before leaving results, e.g. the build
+        if arg == "--also-failed" and i + 1 < len(args):
+            failed += 1
+            names.append(args[i + 1])
     for name in names:
         print(f"FAILED: {name}")
     print(f"{passed} passed, {failed} failed")

@@ -19,5 +19,10 @@ if ! bash "$repo/scripts/sanitize.sh" "$results/marble_maze"; then
   echo "the sanitized core tests failed (logs in $WS/sanitize)"
   extra+=(--also-failed "sanitized core tests")
 fi
+# The fuzzers, half a minute each (make fuzz runs them longer), into the same results.
+if ! bash "$repo/scripts/fuzz.sh" 30 "$results/marble_maze"; then
+  echo "the fuzzers found something or failed to build (logs in $WS/fuzz)"
+  extra+=(--also-failed "fuzzers")
+fi
 # catkin_make run_tests exits 0 even when tests fail: the verdict comes from the result files.
 /usr/bin/python3 "$repo/scripts/count_results.py" "$results" "${extra[@]}"

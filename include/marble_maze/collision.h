@@ -10,8 +10,8 @@
 
 namespace marble_maze {
 
-/// Where the tile grid is in the world at one instant: the point it turns about and its basis
-/// [e_x' e_y' e_z'].
+/// Where the tile grid is in the world at one instant: its basis [e_x' e_y' e_z'] and where the
+/// point it turns about, which stays at the world's origin, lies in the grid.
 ///
 /// Eq. (4) is taken about that point rather than about the grid's corner O': the rotation then
 /// acts on the offset from the pivot, small where the marble plays, not on the offset from the
@@ -22,18 +22,17 @@ namespace marble_maze {
 /// sweep seven times the tiles of a smaller maze).
 struct GridFrame {
   Mat3 rotation = Mat3::Identity();  ///< columns are e_x', e_y', e_z' in the world
-  Vec3 pivot = Vec3::Zero();         ///< world position of the point the board turns about
-  Vec3 grid_pivot = Vec3::Zero();    ///< that point in grid coordinates
+  Vec3 grid_pivot = Vec3::Zero();    ///< the pivot (at the world's origin) in grid coordinates
   Vec3 angular_velocity = Vec3::Zero();
 
   /// Eq. (4): v_P' = [e_x' e_y' e_z']^-1 (v_P - v_O'); the basis is orthonormal, so ^-1 = ^T.
   Vec3 toGrid(const Vec3& world) const { return toBoard(world) + grid_pivot; }
   Vec3 toWorld(const Vec3& grid) const { return fromBoard(grid - grid_pivot); }
   /// Board coordinates: the grid's axes, from the pivot.
-  Vec3 toBoard(const Vec3& world) const { return rotation.transpose() * (world - pivot); }
-  Vec3 fromBoard(const Vec3& board) const { return pivot + rotation * board; }
+  Vec3 toBoard(const Vec3& world) const { return rotation.transpose() * world; }
+  Vec3 fromBoard(const Vec3& board) const { return rotation * board; }
   /// Velocity of the board's material point at a world position: w x (p - pivot).
-  Vec3 surfaceVelocity(const Vec3& world) const { return angular_velocity.cross(world - pivot); }
+  Vec3 surfaceVelocity(const Vec3& world) const { return angular_velocity.cross(world); }
 };
 
 /// The marble touching one tile.

@@ -24,7 +24,6 @@ struct MazeFileError : std::runtime_error {
   std::string source;
   int line;
   int column;
-  std::string message;  ///< without the location prefix
 };
 
 /// Parses maze-file text. `source` names it in error messages (a path or "<embedded:NAME>").

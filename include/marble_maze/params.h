@@ -100,8 +100,12 @@ Params paramsFromText(const std::string& text, Params base = Params());
 /// The shortest text that reads back as exactly the same double.
 std::string exactText(double value);
 
-/// Reads a finite number that is the whole of `text` (spaces around it allowed); false otherwise.
+/// Reads a finite number that is the whole of `text` (spaces around it allowed); false otherwise,
+/// also for a number too small to tell from 0 or too large for a double.
 bool parseFiniteNumber(const std::string& text, double* value);
+/// What is wrong with `text` as a finite number ("expected a number, got 'x'", "'1e-400'
+/// underflows: ..."), or "" when nothing is.
+std::string whyNotANumber(const std::string& text);
 
 /// Checks the values together (ranges, step against threshold); throws ParamError naming the key.
 void validate(const Params& params);

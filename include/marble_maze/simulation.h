@@ -25,7 +25,10 @@ struct Marble {
   Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world frame
   Quat orientation = Quat::Identity();   ///< world frame
   MarblePhase phase = MarblePhase::Free;
-  int contacts = 0;  ///< tiles touched after the last step
+  /// Surfaces touched (coplanar tiles count once) when last looked at in the last step: at the
+  /// start of its last substep, or at the last impact within it. (A look after the move would
+  /// cost a contact query a step; the next step's first look is that one.)
+  int contacts = 0;
 };
 
 /// Everything of a simulation that changes as it runs, and nothing else: with the same scene,

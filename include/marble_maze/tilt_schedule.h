@@ -26,7 +26,6 @@ class TiltSchedule {
   static TiltSchedule load(const std::string& path);
 
   Point at(double time) const;
-  bool empty() const { return points_.empty(); }
   double duration() const { return points_.empty() ? 0.0 : points_.back().time; }
 
  private:

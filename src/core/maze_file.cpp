@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "marble_maze/embedded_mazes.h"
+#include "marble_maze/text_file.h"
 
 namespace marble_maze {
 namespace {
@@ -501,8 +502,7 @@ MazeFileError::MazeFileError(const std::string& source, int line, int column,
     : std::runtime_error(prefix(source, line, column) + message),
       source(source),
       line(line),
-      column(column),
-      message(message) {}
+      column(column) {}
 
 Scene parseScene(const std::string& text, const std::string& source, const Params& defaults) {
   Scene scene = SceneParser(text, source, defaults).parse();
@@ -512,12 +512,13 @@ Scene parseScene(const std::string& text, const std::string& source, const Param
 }
 
 Scene loadSceneFile(const std::string& path, const Params& defaults) {
-  std::ifstream in(path, std::ios::binary);
-  std::error_code error;
-  if (!in || std::filesystem::is_directory(path, error))
-    throw MazeFileError(path, 0, 0, "cannot read file");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw MazeFileError(path, 0, 0, "cannot read file");
+  std::string text;
+  try {
+    text = readTextFile(path);
+  } catch (const TextFileError& e) {
+    const std::string why = e.what();
+    throw MazeFileError(path, 0, 0, why.substr(path.size() + 2));
+  }
   return parseScene(text, path, defaults);
 }
 

@@ -1,6 +1,8 @@
 #include "marble_maze/params.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -27,8 +29,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 double parseNumber(const std::string& key, const std::string& text, double min, double max) {
   double value = 0;
-  if (!parseFiniteNumber(text, &value))
-    throw ParamError(key + ": expected a number, got '" + text + "'");
+  if (!parseFiniteNumber(text, &value)) throw ParamError(key + ": " + whyNotANumber(text));
   if (value < min || value > max) {
     std::ostringstream msg;
     msg << key << ": " << value << " is out of range [" << min << ", " << max << "]";
@@ -249,10 +250,50 @@ const Entry& find(const std::string& key) {
 
 }  // namespace
 
+namespace {
+
+enum class NumberText { Finite, NotANumber, Underflows, Overflows, NotFinite };
+
+/// Reads the whole of `text` (spaces around it allowed) as a number, telling what is wrong with it
+/// when it is not a finite one.
+NumberText readNumberText(const std::string& text, double* value) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double read = std::strtod(begin, &end);
+  if (end == begin) return NumberText::NotANumber;
+  while (end < begin + text.size() && std::isspace(static_cast<unsigned char>(*end))) ++end;
+  if (end != begin + text.size()) return NumberText::NotANumber;
+  if (errno == ERANGE)
+    return std::abs(read) <= std::numeric_limits<double>::min() ? NumberText::Underflows
+                                                                : NumberText::Overflows;
+  if (!std::isfinite(read)) return NumberText::NotFinite;
+  *value = read;
+  return NumberText::Finite;
+}
+
+}  // namespace
+
 bool parseFiniteNumber(const std::string& text, double* value) {
-  std::istringstream in(text);
-  in >> *value;
-  return !in.fail() && (in >> std::ws).eof() && std::isfinite(*value);
+  return readNumberText(text, value) == NumberText::Finite;
+}
+
+std::string whyNotANumber(const std::string& text) {
+  double value = 0;
+  switch (readNumberText(text, &value)) {
+    case NumberText::Finite:
+      return "";
+    case NumberText::Underflows:
+      return "'" + text +
+             "' underflows: it is too small to tell from 0 (the least is about 2.2e-308)";
+    case NumberText::Overflows:
+      return "'" + text + "' overflows: it is beyond the largest number (about 1.8e308)";
+    case NumberText::NotFinite:
+      return "expected a finite number, got '" + text + "'";
+    case NumberText::NotANumber:
+      break;
+  }
+  return "expected a number, got '" + text + "'";
 }
 
 double Params::marbleMass() const {

@@ -31,6 +31,19 @@ Simulation::Simulation(const Scene& scene)
       integrator_(&integratorFor(params_.integrator)) {
   validate(params_);
   reset();
+  // The marble must start where it can be: not in a tile (a start position in a wall, a marble
+  // wider than its start cell) and on the board.
+  const std::string why = whyNotPlaceable(startInBoard());
+  if (!why.empty()) {
+    std::ostringstream message;
+    if (params_.has_start_position)
+      message << "start_position: the marble cannot start there: " << why;
+    else
+      message << "marble_radius: a marble of radius " << params_.marble_radius
+              << " m does not fit the start cell (" << maze_.start().i << ", " << maze_.start().j
+              << "): " << why;
+    throw ParamError(message.str());
+  }
 }
 
 void Simulation::setParams(const Params& params) {
@@ -363,6 +376,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
     bool found = false;
     for (const Contact& c : contacts_) found = found || c.normal.dot(hit.contact.normal) > 1 - 1e-9;
     if (!found) contacts_.push_back(hit.contact);
+    marble_.contacts = static_cast<int>(contacts_.size());
     impact(start_time + done * h);
     if (!(done < 1)) return;  // at the very end of the substep: nothing left to move
   }
@@ -395,7 +409,7 @@ void Simulation::checkFinish(double time) {
 void Simulation::hold(MarblePhase phase, EventKind kind, const Index3& tile, double time) {
   events_.push_back({time, kind, tile, marble_.velocity.norm()});
   marble_.phase = phase;
-  if (!marble_.position.allFinite()) marble_.position = frame_.pivot;
+  if (!marble_.position.allFinite()) marble_.position = Vec3::Zero();  // the pivot
   held_in_grid_ = frame_.toGrid(marble_.position);
   marble_.velocity = frame_.surfaceVelocity(marble_.position);
   marble_.angular_velocity.setZero();

@@ -1,10 +1,10 @@
 #include "marble_maze/tilt_schedule.h"
 
 #include <algorithm>
-#include <fstream>
 #include <sstream>
 
 #include "marble_maze/params.h"
+#include "marble_maze/text_file.h"
 
 namespace marble_maze {
 
@@ -32,7 +32,7 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
     }
     if (!schedule.points_.empty() && p.time <= schedule.points_.back().time)
       throw error("times must increase, got " + fields[0] + " after " +
-                  std::to_string(schedule.points_.back().time));
+                  exactText(schedule.points_.back().time));
     schedule.points_.push_back(p);
   }
   if (schedule.points_.empty()) throw std::runtime_error(source + ": no rows t,roll,pitch");
@@ -40,11 +40,7 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
 }
 
 TiltSchedule TiltSchedule::load(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw std::runtime_error(path + ": cannot read file");
-  std::stringstream text;
-  text << file.rdbuf();
-  return parse(text.str(), path);
+  return parse(readTextFile(path), path);  // TextFileError is a std::runtime_error
 }
 
 TiltSchedule::Point TiltSchedule::at(double time) const {

@@ -33,7 +33,11 @@ std::string text(double value) {
 MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   mm::Scene scene;
   settings_ = readSettings(pnh, &scene);
-  session_ = std::make_unique<mm::Session>(scene, settings_.session);
+  try {
+    session_ = std::make_unique<mm::Session>(scene, settings_.session);
+  } catch (const mm::ParamError& e) {  // the marble where it cannot be: the key is ours
+    throw std::runtime_error(pnh.getNamespace() + "/" + e.what());
+  }
   maze_text_ = scene.text;
   maze_source_ = scene.source;
   started_ = ros::WallTime::now();
@@ -44,7 +48,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   input_ = std::make_unique<TiltInput>(
       nh,
       [this](const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll, double pitch) {
-        onCommand(stamp, kind, roll, pitch);
+        return onCommand(stamp, kind, roll, pitch);
       },
       [this]() -> const mm::Params& { return session_->simulation().params(); });
   SimControl control;
@@ -268,8 +272,8 @@ void MazeNode::updateHealth() {
 // --- Inputs
 // ----------------------------------------------------------------------------------------
 
-void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll,
-                         double pitch) {
+double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll,
+                           double pitch) {
   const std::uint64_t now = session_->steps();
   if (settings_.lockstep > 0) {
     // A gym-like loop over plain topics: the command acts at once, for one control period.
@@ -277,7 +281,7 @@ void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, dou
     runSteps(std::max<std::uint64_t>(1, std::llround(settings_.lockstep / step())));
     publishNow();
     updateHealth();
-    return;
+    return 0;
   }
   // Paused, time stands still: a command acts at the next step taken (by `step`, or on resume),
   // so that an agent stepping the simulation drives it step by step.
@@ -287,6 +291,7 @@ void MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, dou
     ROS_WARN_THROTTLE(1.0,
                       "tilt commands stamped far ahead fill the queue; dropped the one furthest "
                       "ahead");
+  return static_cast<double>(at - now) * step();
 }
 
 // --- Services

@@ -53,8 +53,9 @@ class MazeNode {
   std::uint64_t stepsPer(double seconds) const;
 
   // Inputs and services.
-  void onCommand(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind, double roll,
-                 double pitch);
+  /// Queues a command at the step its stamp falls on; returns how long (s) it is held.
+  double onCommand(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind, double roll,
+                   double pitch);
   std::string reset();
   std::string pause();
   std::string resume();

@@ -41,8 +41,9 @@ double readNumber(const ros::NodeHandle& pnh, const std::string& key, double fal
   if (!pnh.getParam(key, value)) return fallback;
   const std::string name = pnh.resolveName(key);
   double number = 0;
-  if (!mm::parseFiniteNumber(asText(value, name), &number))
-    throw std::runtime_error(name + ": expected a number");
+  const std::string text = asText(value, name);
+  if (!mm::parseFiniteNumber(text, &number))
+    throw std::runtime_error(name + ": " + mm::whyNotANumber(text));
   if (number < min || number > max) {
     std::ostringstream msg;
     msg << name << ": " << number << " is out of range [" << min << ", " << max << "]";
@@ -74,6 +75,26 @@ const std::set<std::string>& nodeKeys() {
       "rate_timeout", "auto_reset",  "world_frame",     "board_frame", "marble_frame",
       "clock",        "lockstep",    "real_time_factor"};
   return keys;
+}
+
+/// The frames make the chain world -> board -> marble of tf: each named, none twice, none with
+/// the leading '/' tf2 refuses. An empty or repeated frame would flood every tf listener with
+/// errors (TF_NO_FRAME_ID, TF_SELF_TRANSFORM) or make a cycle.
+void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& s) {
+  const std::pair<const char*, const std::string*> frames[] = {{"world_frame", &s.world_frame},
+                                                               {"board_frame", &s.board_frame},
+                                                               {"marble_frame", &s.marble_frame}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string name = pnh.resolveName(frames[i].first);
+    const std::string& frame = *frames[i].second;
+    if (frame.empty()) throw std::runtime_error(name + ": a frame needs a name");
+    if (frame[0] == '/')
+      throw std::runtime_error(name + ": '" + frame + "' starts with '/', which tf2 refuses");
+    for (std::size_t j = 0; j < i; ++j)
+      if (frame == *frames[j].second)
+        throw std::runtime_error(name + ": '" + frame + "' is " + pnh.resolveName(frames[j].first) +
+                                 " too; tf needs world -> board -> marble to be three frames");
+  }
 }
 
 }  // namespace
@@ -110,6 +131,7 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   s.world_frame = readText(pnh, "world_frame", s.world_frame);
   s.board_frame = readText(pnh, "board_frame", s.board_frame);
   s.marble_frame = readText(pnh, "marble_frame", s.marble_frame);
+  checkFrames(pnh, s);
   s.own_clock = readFlag(pnh, "clock", s.own_clock);
   s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor, 0.0, 1e6);
   s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 1e6);

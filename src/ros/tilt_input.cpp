@@ -25,7 +25,7 @@ void TiltInput::onTilt(const marble_maze::BoardTilt::ConstPtr& msg) {
   if (std::abs(msg->roll) > limit || std::abs(msg->pitch) > limit)
     ROS_WARN_THROTTLE(1.0, "%s: roll=%g pitch=%g rad beyond tilt_limit %g rad; clamped",
                       tilt_topic_.c_str(), msg->roll, msg->pitch, limit);
-  pass(msg->header, mm::TiltCommand::Kind::Angles, msg->roll, msg->pitch);
+  pass(tilt_topic_, msg->header, mm::TiltCommand::Kind::Angles, msg->roll, msg->pitch);
 }
 
 void TiltInput::onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg) {
@@ -39,14 +39,20 @@ void TiltInput::onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg) {
     ROS_WARN_THROTTLE(1.0,
                       "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
                       rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate, limit);
-  pass(msg->header, mm::TiltCommand::Kind::Rates, msg->roll_rate, msg->pitch_rate);
+  pass(rate_topic_, msg->header, mm::TiltCommand::Kind::Rates, msg->roll_rate, msg->pitch_rate);
 }
 
-void TiltInput::pass(const std_msgs::Header& header, mm::TiltCommand::Kind kind, double roll,
-                     double pitch) {
+void TiltInput::pass(const std::string& topic, const std_msgs::Header& header,
+                     mm::TiltCommand::Kind kind, double roll, double pitch) {
   last_ = ros::Time::now();
   ++received_;
-  handler_(header.stamp.isZero() ? last_ : header.stamp, kind, roll, pitch);
+  const double held = handler_(header.stamp.isZero() ? last_ : header.stamp, kind, roll, pitch);
+  if (held > kHeldWarning)
+    ROS_WARN_THROTTLE(1.0,
+                      "%s: command stamped %.9g s is held %.6g s, until the simulation's clock "
+                      "reaches its stamp (stamp commands with ros::Time::now(), which follows "
+                      "/clock under /use_sim_time, or leave the stamp zero to act at once)",
+                      topic.c_str(), header.stamp.toSec(), held);
 }
 
 }  // namespace marble_maze_ros

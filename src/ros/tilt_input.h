@@ -1,6 +1,8 @@
 // The board's commands from `tilt` (target angles) and `tilt_rate` (rates): refused with a
 // warning naming the topic and field when not finite, clamped with a warning beyond the limits,
-// and handed on with their stamp (zero: now). Counts them, for the diagnostics.
+// and handed on with their stamp (zero: now). A command the handler holds for later (stamped
+// ahead of the simulation's clock) is told at once, with how far ahead. Counts them, for the
+// diagnostics.
 #pragma once
 
 #include <ros/ros.h>
@@ -18,8 +20,12 @@ namespace marble_maze_ros {
 
 class TiltInput {
  public:
-  using Handler = std::function<void(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind,
-                                     double roll, double pitch)>;
+  /// Takes a command; returns how long (s of the simulation's time) it is held before it acts.
+  using Handler = std::function<double(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind,
+                                       double roll, double pitch)>;
+  /// Held longer than this, a command is warned about (throttled): a stamp of wall time into a
+  /// node on simulated time, a clock that jumped back.
+  static constexpr double kHeldWarning = 0.1;  // s
   /// `limits` gives the tilt and rate limits in force (they may change while running).
   TiltInput(ros::NodeHandle& nh, Handler handler,
             std::function<const marble_maze::Params&()> limits);
@@ -30,8 +36,8 @@ class TiltInput {
  private:
   void onTilt(const marble_maze::BoardTilt::ConstPtr& msg);
   void onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg);
-  void pass(const std_msgs::Header& header, marble_maze::TiltCommand::Kind kind, double roll,
-            double pitch);
+  void pass(const std::string& topic, const std_msgs::Header& header,
+            marble_maze::TiltCommand::Kind kind, double roll, double pitch);
 
   Handler handler_;
   std::function<const marble_maze::Params&()> limits_;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -15,134 +16,17 @@
 #include "marble_maze/maze_file.h"
 #include "marble_maze/simulation.h"
 #include "marble_maze/tilt_schedule.h"
+#include "runner_options.h"
 
 namespace mm = marble_maze;
+using mm::runner::Options;
+using mm::runner::parseOptions;
+using mm::runner::prepare;
+using mm::runner::printHelp;
+using mm::runner::Run;
+using mm::runner::UsageError;
 
 namespace {
-
-/// A wrong flag or value: exit code 2.
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-struct Options {
-  std::string maze = "classic";
-  mm::TiltSchedule tilt{0.0, 0.0};
-  std::vector<std::pair<std::string, std::string>> sets;
-  double duration = 5.0;
-  std::string out;     // trajectory CSV, "-" for standard output
-  std::string events;  // events CSV
-  int every = 1;
-  bool quiet = false;
-  std::string bag;     // a recorded session to re-simulate
-  bool check = false;  // and compare with its recorded marble_state
-};
-
-void printHelp() {
-  std::cout <<
-      R"(Usage: simulate [OPTION]...
-Runs the marble_maze physics without ROS and reports what happened.
-
-  --maze NAME|FILE     a built-in maze (classic, prototype) or a maze file; default classic
-  --tilt ROLL,PITCH    constant board tilt in radians (REP 103: roll about x, pitch about y);
-                       default 0,0
-  --tilt-csv FILE      tilt program: CSV rows t,roll,pitch (s, rad, rad), linear in between
-  --set KEY=VALUE      override a scene or physics value (repeatable); keys below
-  --duration SECONDS   simulated time to run; default 5
-  --out FILE           write the trajectory as CSV ('-' for standard output)
-  --events FILE        write the events as CSV
-  --every N            write every Nth step to the trajectory; default 1
-  --quiet              no summary on standard output
-  --bag FILE           re-simulate a session recorded by record.launch, from its first snapshot,
-                       with its inputs at their steps (no ROS master needed); --set re-runs it
-                       under other physics; --duration is ignored
-  --check              with --bag: compare with the bag's recorded marble_state, bit for bit;
-                       exit 1 at the first difference, printing its time and size
-  --help               this text
-
-The board starts at the tilt program's first value unless initial_roll or initial_pitch is set.
-
-Trajectory columns (world frame, SI units): t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase
-  phase: free, in_hole, at_goal or off_board
-Event columns: t,kind,i,j,k,speed   kind: collision, hole, goal or off_board; i,j,k the tile
-
-Keys for --set (and for a maze file's physics section):
-)";
-  for (const auto& info : mm::paramInfos()) {
-    const std::string name = info.key + (info.unit.empty() ? "" : " [" + info.unit + "]");
-    std::printf("  %-26s %s (default %s)\n", name.c_str(), info.help.c_str(),
-                mm::getParam(mm::Params(), info.key).c_str());
-  }
-  std::cout << "\nExit status: 0 done, 2 a wrong flag, value or maze file, 1 anything else.\n";
-}
-
-double parseDouble(const std::string& flag, const std::string& text) {
-  double value;
-  if (!mm::parseFiniteNumber(text, &value))
-    throw UsageError(flag + ": expected a number, got '" + text + "'");
-  return value;
-}
-
-Options parseOptions(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help" || flag == "-h") {
-      printHelp();
-      std::exit(0);
-    }
-    if (flag == "--quiet") {
-      o.quiet = true;
-      continue;
-    }
-    if (flag == "--check") {
-      o.check = true;
-      continue;
-    }
-    if (i + 1 >= argc)
-      throw UsageError(flag +
-                       (flag.rfind("--", 0) == 0 ? ": needs a value" : ": unknown argument"));
-    const std::string value = argv[++i];
-    if (flag == "--maze") {
-      o.maze = value;
-    } else if (flag == "--tilt") {
-      const auto comma = value.find(',');
-      if (comma == std::string::npos)
-        throw UsageError("--tilt: expected ROLL,PITCH, got '" + value + "'");
-      o.tilt = mm::TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
-                                parseDouble("--tilt", value.substr(comma + 1)));
-    } else if (flag == "--tilt-csv") {
-      try {
-        o.tilt = mm::TiltSchedule::load(value);
-      } catch (const std::runtime_error& e) {
-        throw UsageError(std::string("--tilt-csv: ") + e.what());
-      }
-    } else if (flag == "--set") {
-      const auto eq = value.find('=');
-      if (eq == std::string::npos || eq == 0)
-        throw UsageError("--set: expected KEY=VALUE, got '" + value + "'");
-      o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
-    } else if (flag == "--duration") {
-      o.duration = parseDouble(flag, value);
-      if (!(o.duration >= 0 && o.duration <= 1e6))
-        throw UsageError("--duration: expected 0..1e6 seconds, got '" + value + "'");
-    } else if (flag == "--out") {
-      o.out = value;
-    } else if (flag == "--bag") {
-      o.bag = value;
-    } else if (flag == "--events") {
-      o.events = value;
-    } else if (flag == "--every") {
-      const double n = parseDouble(flag, value);
-      if (n < 1 || n != static_cast<int>(n))
-        throw UsageError("--every: expected a whole number >= 1, got '" + value + "'");
-      o.every = static_cast<int>(n);
-    } else {
-      throw UsageError("unknown option '" + flag + "' (see simulate --help)");
-    }
-  }
-  return o;
-}
 
 const char* phaseName(mm::MarblePhase phase) {
   switch (phase) {
@@ -274,33 +158,9 @@ int rerun(const Options& o) {
 
 int run(const Options& o) {
   if (!o.bag.empty()) return rerun(o);
-  if (o.check) throw UsageError("--check: only with --bag");
-  mm::Scene scene;
-  bool initial_tilt_set = false;
-  try {
-    scene = mm::loadScene(o.maze);
-    for (const auto& [key, value] : o.sets) {
-      mm::setParam(scene.params, key, value);
-      initial_tilt_set = initial_tilt_set || key == "initial_roll" || key == "initial_pitch";
-    }
-  } catch (const mm::MazeFileError& e) {
-    throw UsageError(e.what());
-  } catch (const mm::ParamError& e) {
-    throw UsageError(std::string("--set ") + e.what());
-  }
-  // The board starts where the tilt program starts (within the tilt limit, as every tilt), so
-  // that a constant tilt is an incline from t = 0.
-  if (!initial_tilt_set) {
-    const double limit = scene.params.tilt_limit;
-    scene.params.initial_roll = std::clamp(o.tilt.at(0).roll, -limit, limit);
-    scene.params.initial_pitch = std::clamp(o.tilt.at(0).pitch, -limit, limit);
-  }
-  std::unique_ptr<mm::Simulation> sim;
-  try {
-    sim = std::make_unique<mm::Simulation>(scene);
-  } catch (const mm::ParamError& e) {
-    throw UsageError(e.what());
-  }
+  Run prepared = prepare(o);
+  const mm::Scene& scene = prepared.scene;
+  std::unique_ptr<mm::Simulation>& sim = prepared.sim;
   std::unique_ptr<std::ofstream> out_file, events_file;
   std::ostream* out = openOutput(o.out, &out_file);
   std::ostream* events = openOutput(o.events, &events_file);
@@ -350,7 +210,12 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   try {
-    return run(parseOptions(argc, argv));
+    const Options options = parseOptions(std::vector<std::string>(argv + 1, argv + argc));
+    if (options.help) {
+      printHelp(std::cout);
+      return 0;
+    }
+    return run(options);
   } catch (const UsageError& e) {
     std::cerr << "simulate: " << e.what() << "\n";
     return 2;

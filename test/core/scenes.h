@@ -57,8 +57,8 @@ inline Maze generatedMaze(int cells, bool walls = true) {
       const bool post = i % 2 == 0 && j % 2 == 0;
       const bool wall_slot = (i % 2 == 0) != (j % 2 == 0);
       const bool outer = i == 0 || j == 0 || i == n - 1 || j == n - 1;
-      const unsigned hash =
-          static_cast<unsigned>((i - c) * 73856093) ^ static_cast<unsigned>((j - c) * 19349663);
+      const unsigned hash = static_cast<unsigned>(i - c) * 73856093u ^
+                            static_cast<unsigned>(j - c) * 19349663u;  // wraps, as unsigned may
       const bool room_wall = (std::abs(i - c) == 5 && std::abs(j - c) <= 5) ||
                              (std::abs(j - c) == 5 && std::abs(i - c) <= 5);
       const bool inside_room = std::abs(i - c) < 5 && std::abs(j - c) < 5;

@@ -115,7 +115,7 @@ TEST(FindContacts, FollowsTheBoardFrameByEquationFour) {
   const Maze maze = grid({{5, 5, 0}});
   GridFrame frame;
   frame.rotation = Eigen::AngleAxisd(0.3, Vec3::UnitY()).toRotationMatrix();
-  frame.pivot = Vec3(0.1, -0.2, 0.05);
+  frame.grid_pivot = Vec3(0.1, -0.2, 0.05);
   const Vec3 grid_centre(0.055, 0.055, 0.014);
   std::vector<Contact> contacts;
   findContacts(maze, frame, frame.toWorld(grid_centre), 0.005, 1e-9, &contacts);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -375,6 +376,64 @@ TEST(Extremes, AMarbleOnAnEdgeAVertexASeamOrWedgedInACornerRests) {
         for (int i = 0; i < static_cast<int>(10.0 / step); ++i) sim.step();
         EXPECT_LT((sim.marbleInBoard() - settled).norm(), 1e-6) << name(p) << " " << c.what;
       }
+}
+
+/// The message of the ParamError that making a simulation of the scene throws, or "".
+std::string refusal(const Scene& scene) {
+  try {
+    Simulation sim(scene);
+  } catch (const ParamError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Extremes, AMarbleThatCannotStartWhereItIsPutIsRefusedNamingTheKey) {
+  Scene scene = loadScene("classic");
+  // Inside the outer wall at the far-left corner (board frame: the grid less the pivot).
+  const Vec3 wall = Vec3(scene.maze.axis(0).centre(0), scene.maze.axis(1).centre(3),
+                         scene.maze.floorTop() + 0.006) -
+                    scene.maze.pivot();
+  Scene in_wall = scene;
+  setParam(
+      in_wall.params, "start_position",
+      std::to_string(wall.x()) + "," + std::to_string(wall.y()) + "," + std::to_string(wall.z()));
+  EXPECT_NE(refusal(in_wall).find("start_position: the marble cannot start there: inside tile (0,"),
+            std::string::npos)
+      << refusal(in_wall);
+  Scene off_board = scene;
+  setParam(off_board.params, "start_position", "1,0,0.006");
+  EXPECT_NE(refusal(off_board).find("start_position"), std::string::npos) << refusal(off_board);
+  Scene wide = scene;  // 3 cm across in a cell of 2.2 cm between walls
+  setParam(wide.params, "marble_radius", "0.015");
+  EXPECT_NE(refusal(wide).find("marble_radius: a marble of radius 0.015 m does not fit the start "
+                               "cell"),
+            std::string::npos)
+      << refusal(wide);
+  // The control: the default marble at the start cell, and one placed by hand on the floor.
+  EXPECT_EQ(refusal(scene), "");
+  Scene placed_well = scene;  // by hand where the start cell puts it
+  placed_well.params.has_start_position = true;
+  placed_well.params.start_position = Simulation(scene).startInBoard();
+  EXPECT_EQ(refusal(placed_well), "");
+}
+
+TEST(Extremes, AMarbleWhoseStateIsNotFiniteIsTakenOffTheBoardNotSpreadNaN) {
+  // The finish rules' last guard: placed by hand with a velocity that is not a number (nothing
+  // the node or the runner lets through, which refuse it), the marble is taken off the board
+  // after one step and held, finite, at the pivot, with an off_board event.
+  for (const double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    Simulation sim(loadScene("classic"));
+    sim.placeMarble(sim.startInBoard(), Vec3(bad, 0, 0));
+    sim.step();
+    EXPECT_EQ(sim.marble().phase, MarblePhase::OffBoard) << bad;
+    EXPECT_TRUE(sim.marble().position.allFinite()) << bad;
+    EXPECT_TRUE(sim.marble().velocity.allFinite()) << bad;
+    ASSERT_EQ(sim.events().size(), 1u) << bad;
+    EXPECT_EQ(sim.events()[0].kind, EventKind::OffBoard);
+    for (int k = 0; k < 100; ++k) sim.step();  // and it stays so
+    EXPECT_TRUE(sim.marble().position.allFinite() && sim.energy() == sim.energy()) << bad;
+  }
 }
 
 TEST(Extremes, SettingsThatCannotBeSimulatedAreRefusedNamingTheKey) {

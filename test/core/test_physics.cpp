@@ -267,6 +267,34 @@ TEST(Impact, ElasticImpactsAtWallsEdgesAndCornersNeverAddEnergy) {
   EXPECT_GT(impacts, 50);  // the throws did meet walls, posts, edges and corners
 }
 
+TEST(Impact, SimultaneousImpactsThatNewtonsLawWouldMakeGainEnergyStopInstead) {
+  // Two walls 80 degrees apart struck at once, e = 1, no friction: restitution taken contact by
+  // contact would send the marble off faster than it came (each wall's bounce drives it into
+  // the other), so the solver takes both impacts as perfectly inelastic: it stops against both.
+  // One of the walls alone gives the elastic bounce.
+  Params p;
+  p.model = Model::Smooth;
+  p.restitution = 1.0;
+  ContactSolver solver(p);
+  std::vector<Contact> walls(2);
+  walls[0].normal = Vec3(1, 0, 0);
+  walls[1].normal = Vec3(std::cos(80 * kPi / 180), std::sin(80 * kPi / 180), 0);
+  for (Contact& c : walls) c.point = c.surface_velocity = Vec3::Zero();
+  const Vec3 approach = -Vec3(std::cos(10 * kPi / 180), std::sin(10 * kPi / 180), 0);
+  MarbleBody body;
+  body.velocity = approach;
+  std::vector<ContactOutcome> outcomes;
+  solver.impact(walls, &body, &outcomes);
+  EXPECT_LT(body.velocity.norm(), 1e-12);
+  ASSERT_EQ(outcomes.size(), 2u);
+  EXPECT_TRUE(outcomes[0].bounce && outcomes[1].bounce);  // both were impacts
+  MarbleBody alone;
+  alone.velocity = approach;
+  solver.impact({walls[0]}, &alone, &outcomes);
+  EXPECT_NEAR(alone.velocity.x(), -approach.x(), 1e-12);  // e = 1 off one wall
+  EXPECT_NEAR(alone.velocity.norm(), 1.0, 1e-12);
+}
+
 // --- Rolling resistance and drag ---------------------------------------------------------------
 
 TEST(Resistance, RollingResistanceDeceleratesAtFiveSeventhsCrrG) {

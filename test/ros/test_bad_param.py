@@ -114,6 +114,36 @@ class BadParamTest(unittest.TestCase):
         finally:
             os.unlink(maze.name)
 
+    # Issue 12: frames that would break tf, and a marble that cannot start where it is put.
+    def test_a_board_frame_named_as_the_world_frame(self):
+        self.check_refused("bp_eleven", ["_board_frame:=world"], "board_frame", "world_frame")
+
+    def test_a_marble_frame_named_as_the_board_frame(self):
+        self.check_refused("bp_twelve", ["_marble_frame:=board"], "marble_frame", "board_frame")
+
+    def test_a_frame_with_a_leading_slash(self):
+        self.check_refused("bp_thirteen", ["_world_frame:=/world"], "world_frame", "'/'")
+
+    def test_a_start_position_inside_a_wall(self):
+        # The classic maze's centre is a wall's post: tile (10, 8, 1).
+        self.check_refused("bp_fourteen", ["_start_position:=[0, 0, 0.006]"], "start_position",
+                           "inside tile (10, 8, 1)")
+
+    def test_a_marble_wider_than_its_start_cell(self):
+        self.check_refused("bp_fifteen", ["_marble_radius:=0.015"], "marble_radius",
+                           "does not fit the start cell")
+
+    def test_a_start_position_as_a_list_is_taken(self):
+        # ROS's list form of a vector parameter: the start cell's centre, on the floor.
+        process = self.start("bp_sixteen", "_start_position:=[-0.12195, 0.098875, 0.006]")
+        try:
+            process.wait(timeout=CONTROL_RUN)
+            self.fail("the node exited (status %s) with a list start_position; output:\n%s"
+                      % (process.returncode, process.communicate()[0]))
+        except subprocess.TimeoutExpired:
+            pass
+        self.assertNotIn("FATAL", self.stop(process))
+
 
 if __name__ == "__main__":
     rospy.init_node("test_bad_param")

@@ -27,7 +27,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
-from rosgraph_msgs.msg import Clock
+from rosgraph_msgs.msg import Clock, Log
 
 from marble_maze.msg import BoardTilt, MarbleState
 
@@ -286,6 +286,32 @@ class SimTimeTest(unittest.TestCase):
             self.assertGreaterEqual(ns(m.header.stamp), 1 * 10**9)
             self.assertTrue(math.isfinite(m.position_in_board.y))
         self.check_latest_follows_clock()
+
+    def test_7_a_tilt_stamped_with_wall_time_is_held_and_said_so(self):
+        # A tilt stamped with the wall clock (about 1.8e9 s) into a node on the simulated clock
+        # (about 1 s) is held until the clock gets there: the node must say so at once, naming
+        # the topic and how long it holds it, and meanwhile keep the tilt it has.
+        warnings, heard = [], threading.Event()
+
+        def on_log(msg):
+            if msg.name == NODE and msg.level == Log.WARN and "held" in msg.msg:
+                warnings.append(msg.msg)
+                heard.set()
+
+        rospy.Subscriber("/rosout", Log, on_log, queue_size=100)
+        time.sleep(0.5)
+        before = self.count()
+        msg = BoardTilt(roll=-0.05, pitch=0.0)
+        msg.header.stamp = rospy.Time.from_sec(time.time())  # wall time: the mistake
+        self.tilt_pub.publish(msg)
+        self.clock.advance_to(self.clock.now() + 20 * TICK_NS)
+        self.assertTrue(heard.wait(WAIT), "no warning about the held tilt on /rosout")
+        self.assertIn("/tilt", warnings[0])
+        held = float(warnings[0].split(" is held ")[1].split(" s")[0])
+        self.assertGreater(held, 1e9, warnings[0])  # about the wall clock's seconds since 1970
+        self.settle()
+        for m in self.since(before):
+            self.assertNotAlmostEqual(m.roll, -0.05, delta=1e-6, msg="the held tilt acted")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The fuzzers of the maze-file parser and of the runner's command line (libFuzzer with
+# AddressSanitizer and UndefinedBehaviorSanitizer, Debian's clang), built beside the workspace
+# (WS/fuzz):
+#   bash scripts/fuzz.sh [SECONDS [RESULTS_DIR]]
+# replays every input of fuzz/regressions/ (each a crash or hang once found), then runs each
+# fuzzer for SECONDS of wall time (default 30) from the checked-in corpus (and mazes/), new inputs going to a
+# scratch corpus in WS/fuzz. A finding stops the run: its input is written to WS/fuzz/findings/,
+# to be fixed and then added to fuzz/regressions/ for good. Prints each fuzzer's executions and,
+# given RESULTS_DIR, writes a JUnit file there with a case per fuzzer (for make test's count).
+set -uo pipefail
+export PATH="/usr/bin:$PATH"
+. "$(dirname "$0")/workspace.sh"
+seconds=${1:-30}
+results=${2:-}
+build="$WS/fuzz"
+cases=""
+record() {  # record NAME FAILURE-MESSAGE-OR-EMPTY
+  if [ -z "$2" ]; then
+    cases+="<testcase classname=\"fuzz\" name=\"$1\"/>"
+  else
+    cases+="<testcase classname=\"fuzz\" name=\"$1\"><failure message=\"$2\"/></testcase>"
+  fi
+}
+mkdir -p "$build/findings"
+bash "$repo/scripts/install_deps.sh" clang libclang-rt-14-dev >/dev/null
+if ! { cmake -S "$repo/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug &&
+       cmake --build "$build" -j2; } > "$build/build.log" 2>&1; then
+  tail -n 20 "$build/build.log"
+  echo "the fuzzers' build failed; the whole log is $build/build.log"
+  exit 1
+fi
+status=0
+for fuzzer in maze args; do
+  binary="$build/${fuzzer}_fuzzer"
+  regressions=("$repo/fuzz/regressions/$fuzzer"/*)
+  if [ -e "${regressions[0]}" ]; then
+    if ! "$binary" "${regressions[@]}" > "$build/$fuzzer-regressions.log" 2>&1; then
+      tail -n 30 "$build/$fuzzer-regressions.log"
+      echo "$fuzzer fuzzer: a regression input fails again (log: $build/$fuzzer-regressions.log)"
+      record "${fuzzer}_regressions" "a regression input fails again"
+      status=1
+      continue
+    fi
+    record "${fuzzer}_regressions" ""
+  fi
+  scratch="$build/corpus-$fuzzer"
+  mkdir -p "$scratch"
+  # -timeout: an input taking more than 10 s is a hang; -rss_limit_mb: one taking 2 GB a leak.
+  seeds=("$repo/fuzz/corpus/$fuzzer")
+  [ "$fuzzer" = maze ] && seeds+=("$repo/mazes")  # the shipped mazes seed it too
+  "$binary" "$scratch" "${seeds[@]}" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 \
+    -artifact_prefix="$build/findings/$fuzzer-" > "$build/$fuzzer.log" 2>&1
+  result=$?
+  runs=$(grep -o "stat::number_of_executed_units: *[0-9]*" "$build/$fuzzer.log" | grep -o "[0-9]*$")
+  echo "$fuzzer fuzzer: ${runs:-0} executions in $seconds s, $(ls "$scratch" | wc -l) inputs in its corpus"
+  if [ $result -ne 0 ]; then
+    grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$build/$fuzzer.log" | head -n 20
+    echo "$fuzzer fuzzer: a finding (log: $build/$fuzzer.log; input in $build/findings/)"
+    record "${fuzzer}_fuzzer" "a finding: see $build/$fuzzer.log"
+    status=1
+  else
+    record "${fuzzer}_fuzzer" ""
+  fi
+done
+if [ -n "$results" ]; then
+  mkdir -p "$results"
+  echo "<testsuite name=\"fuzz\">$cases</testsuite>" > "$results/fuzz.xml"
+fi
+exit $status

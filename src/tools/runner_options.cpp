@@ -1,0 +1,158 @@
+#include "runner_options.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <ostream>
+
+namespace marble_maze {
+namespace runner {
+
+void printHelp(std::ostream& out) {
+  out <<
+      R"(Usage: simulate [OPTION]...
+Runs the marble_maze physics without ROS and reports what happened.
+
+  --maze NAME|FILE     a built-in maze (classic, prototype) or a maze file; default classic
+  --tilt ROLL,PITCH    constant board tilt in radians (REP 103: roll about x, pitch about y);
+                       default 0,0
+  --tilt-csv FILE      tilt program: CSV rows t,roll,pitch (s, rad, rad), linear in between
+  --set KEY=VALUE      override a scene or physics value (repeatable); keys below
+  --duration SECONDS   simulated time to run; default 5
+  --out FILE           write the trajectory as CSV ('-' for standard output)
+  --events FILE        write the events as CSV
+  --every N            write every Nth step to the trajectory; default 1
+  --quiet              no summary on standard output
+  --bag FILE           re-simulate a session recorded by record.launch, from its first snapshot,
+                       with its inputs at their steps (no ROS master needed); --set re-runs it
+                       under other physics; --duration is ignored
+  --check              with --bag: compare with the bag's recorded marble_state, bit for bit;
+                       exit 1 at the first difference, printing its time and size
+  --help               this text
+
+The board starts at the tilt program's first value unless initial_roll or initial_pitch is set.
+
+Trajectory columns (world frame, SI units): t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase
+  phase: free, in_hole, at_goal or off_board
+Event columns: t,kind,i,j,k,speed   kind: collision, hole, goal or off_board; i,j,k the tile
+
+Keys for --set (and for a maze file's physics section):
+)";
+  for (const auto& info : paramInfos()) {
+    const std::string name = info.key + (info.unit.empty() ? "" : " [" + info.unit + "]");
+    char line[64];
+    std::snprintf(line, sizeof line, "  %-26s ", name.c_str());
+    out << line << info.help << " (default " << getParam(Params(), info.key) << ")\n";
+  }
+  out << "\nExit status: 0 done, 2 a wrong flag, value or maze file, 1 anything else.\n";
+}
+
+namespace {
+
+double parseDouble(const std::string& flag, const std::string& text) {
+  double value;
+  if (!parseFiniteNumber(text, &value)) throw UsageError(flag + ": " + whyNotANumber(text));
+  return value;
+}
+
+}  // namespace
+
+Options parseOptions(const std::vector<std::string>& args) {
+  Options o;
+  const std::size_t argc = args.size();
+  for (std::size_t i = 0; i < argc; ++i) {
+    const std::string& flag = args[i];
+    if (flag == "--help" || flag == "-h") {
+      o.help = true;
+      return o;
+    }
+    if (flag == "--quiet") {
+      o.quiet = true;
+      continue;
+    }
+    if (flag == "--check") {
+      o.check = true;
+      continue;
+    }
+    if (i + 1 >= argc)
+      throw UsageError(flag +
+                       (flag.rfind("--", 0) == 0 ? ": needs a value" : ": unknown argument"));
+    const std::string& value = args[++i];
+    if (flag == "--maze") {
+      o.maze = value;
+    } else if (flag == "--tilt") {
+      const auto comma = value.find(',');
+      if (comma == std::string::npos)
+        throw UsageError("--tilt: expected ROLL,PITCH, got '" + value + "'");
+      o.tilt = TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
+                            parseDouble("--tilt", value.substr(comma + 1)));
+    } else if (flag == "--tilt-csv") {
+      try {
+        o.tilt = TiltSchedule::load(value);
+      } catch (const std::runtime_error& e) {
+        throw UsageError(std::string("--tilt-csv: ") + e.what());
+      }
+    } else if (flag == "--set") {
+      const auto eq = value.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw UsageError("--set: expected KEY=VALUE, got '" + value + "'");
+      o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
+    } else if (flag == "--duration") {
+      o.duration = parseDouble(flag, value);
+      if (!(o.duration >= 0 && o.duration <= 1e6))
+        throw UsageError("--duration: expected 0..1e6 seconds, got '" + value + "'");
+    } else if (flag == "--out") {
+      o.out = value;
+    } else if (flag == "--bag") {
+      o.bag = value;
+    } else if (flag == "--events") {
+      o.events = value;
+    } else if (flag == "--every") {
+      const double n = parseDouble(flag, value);
+      // Compared as doubles before any conversion: a cast of a number beyond int is undefined.
+      constexpr double kMostEvery = std::numeric_limits<int>::max();
+      if (n < 1 || n > kMostEvery || n != std::floor(n))
+        throw UsageError("--every: expected a whole number from 1 to " +
+                         std::to_string(std::numeric_limits<int>::max()) + ", got '" + value + "'");
+      o.every = static_cast<int>(n);
+    } else {
+      throw UsageError("unknown option '" + flag + "' (see simulate --help)");
+    }
+  }
+  return o;
+}
+
+Run prepare(const Options& o) {
+  if (o.check && o.bag.empty()) throw UsageError("--check: only with --bag");
+  Run run;
+  Scene& scene = run.scene;
+  bool initial_tilt_set = false;
+  try {
+    scene = loadScene(o.maze);
+    for (const auto& [key, value] : o.sets) {
+      setParam(scene.params, key, value);
+      initial_tilt_set = initial_tilt_set || key == "initial_roll" || key == "initial_pitch";
+    }
+  } catch (const MazeFileError& e) {
+    throw UsageError(e.what());
+  } catch (const ParamError& e) {
+    throw UsageError(std::string("--set ") + e.what());
+  }
+  // The board starts where the tilt program starts (within the tilt limit, as every tilt), so
+  // that a constant tilt is an incline from t = 0.
+  if (!initial_tilt_set) {
+    const double limit = scene.params.tilt_limit;
+    scene.params.initial_roll = std::clamp(o.tilt.at(0).roll, -limit, limit);
+    scene.params.initial_pitch = std::clamp(o.tilt.at(0).pitch, -limit, limit);
+  }
+  try {
+    run.sim = std::make_unique<Simulation>(scene);
+  } catch (const ParamError& e) {
+    throw UsageError(e.what());
+  }
+  return run;
+}
+
+}  // namespace runner
+}  // namespace marble_maze

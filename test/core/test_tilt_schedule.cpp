@@ -1,0 +1,65 @@
+// The tilt programme of the runner (--tilt-csv): its values between and beyond its rows, and
+// each way a file can be wrong, named with its line.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "marble_maze/tilt_schedule.h"
+
+namespace marble_maze {
+namespace {
+
+/// The message parse throws for `text`, or "".
+std::string errorOf(const std::string& text) {
+  try {
+    TiltSchedule::parse(text, "prog.csv");
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TiltSchedule, IsLinearBetweenRowsAndHeldBeyondThem) {
+  const TiltSchedule s = TiltSchedule::parse(
+      "t,roll,pitch\n# a comment\n1,0.1,0\n3,0.3,-0.2\n"
+      "4,0,0\n",
+      "prog.csv");
+  EXPECT_DOUBLE_EQ(s.at(0).roll, 0.1);  // held before the first row
+  EXPECT_DOUBLE_EQ(s.at(2).roll, 0.2);
+  EXPECT_DOUBLE_EQ(s.at(2).pitch, -0.1);
+  EXPECT_DOUBLE_EQ(s.at(3).roll, 0.3);  // exactly on a row
+  EXPECT_DOUBLE_EQ(s.at(3.5).pitch, -0.1);
+  EXPECT_DOUBLE_EQ(s.at(99).roll, 0.0);  // held after the last
+  EXPECT_DOUBLE_EQ(s.duration(), 4.0);
+}
+
+TEST(TiltSchedule, ALongProgrammeIsLookedUpAsFastAsAShortOne) {
+  // 100,000 rows, each looked up: by bisection, a fraction of a second; a walk from the front
+  // for each would take minutes. (A count of the work, not a timing: the values must be right.)
+  std::string text;
+  for (int k = 0; k < 100000; ++k) text += std::to_string(k) + "," + std::to_string(k) + ",0\n";
+  const TiltSchedule s = TiltSchedule::parse(text, "long.csv");
+  for (int k = 0; k + 1 < 100000; ++k) ASSERT_DOUBLE_EQ(s.at(k + 0.5).roll, k + 0.5);
+}
+
+TEST(TiltSchedule, EachWrongFileIsRefusedNamingItsLine) {
+  EXPECT_EQ(errorOf("0,0.1,0\n1,x,0\n"),
+            "prog.csv:2: expected three numbers t,roll,pitch (s, "
+            "rad, rad), got '1,x,0'");
+  EXPECT_EQ(errorOf("0,0.1\n"),
+            "prog.csv:1: expected three numbers t,roll,pitch (s, rad, rad), got '0,0.1'");
+  EXPECT_EQ(errorOf("0,0,0\n2.5,0,0\n1,0,0\n"), "prog.csv:3: times must increase, got 1 after 2.5");
+  EXPECT_EQ(errorOf("0,nan,0\n"),
+            "prog.csv:1: expected three numbers t,roll,pitch (s, rad, rad), got '0,nan,0'");
+  EXPECT_EQ(errorOf("t,roll,pitch\n"), "prog.csv: no rows t,roll,pitch");
+  EXPECT_EQ(errorOf(""), "prog.csv: no rows t,roll,pitch");
+  try {
+    TiltSchedule::load("/nonexistent/prog.csv");
+    FAIL() << "an unreadable file was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/prog.csv: cannot read file");
+  }
+}
+
+}  // namespace
+}  // namespace marble_maze

@@ -40,7 +40,12 @@ double parseNumber(const std::string& key, const std::string& text, double min, 
 
 Vec3 parseVec3(const std::string& key, const std::string& text) {
   Vec3 v;
+  // "X,Y,Z", or the list "[X, Y, Z]" that ROS hands a node for _key:=[X, Y, Z] on its command
+  // line (roscpp does not read a list there: the node gets the text).
   std::string rest = text;
+  const auto first = rest.find_first_not_of(" \t"), last = rest.find_last_not_of(" \t");
+  if (first != std::string::npos && rest[first] == '[' && rest[last] == ']')
+    rest = rest.substr(first + 1, last - first - 1);
   for (int a = 0; a < 3; ++a) {
     const auto comma = rest.find(',');
     if ((a < 2) != (comma != std::string::npos))

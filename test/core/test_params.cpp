@@ -38,6 +38,11 @@ TEST(Params, ValuesAreParsed) {
   EXPECT_EQ(p.substeps, 4);
   EXPECT_TRUE(p.has_start_position);
   EXPECT_EQ(p.start_position, Vec3(0.01, -0.02, 0.006));
+  // The list form ROS hands a node for _start_position:=[X, Y, Z], spaces and all.
+  setParam(p, "start_position", " [0.02, -0.01 ,0.006] ");
+  EXPECT_EQ(p.start_position, Vec3(0.02, -0.01, 0.006));
+  setParam(p, "board_position", "[1,2,3]");
+  EXPECT_EQ(p.board_position, Vec3(1, 2, 3));
 }
 
 TEST(Params, BadValuesNameTheKeyAndWhatWasExpected) {

@@ -121,6 +121,9 @@ class BadParamTest(unittest.TestCase):
     def test_a_marble_frame_named_as_the_board_frame(self):
         self.check_refused("bp_twelve", ["_marble_frame:=board"], "marble_frame", "board_frame")
 
+    def test_an_empty_world_frame(self):
+        self.check_refused("bp_seventeen", ["_world_frame:="], "world_frame", "needs a name")
+
     def test_a_frame_with_a_leading_slash(self):
         self.check_refused("bp_thirteen", ["_world_frame:=/world"], "world_frame", "'/'")
 

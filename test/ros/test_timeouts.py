@@ -7,6 +7,7 @@ Tolerances: the board is level again within 1e-9 rad; the marble is back on the 
 1e-6 m. Waits are generous (wall time) so that a loaded machine does not fail the test.
 """
 import math
+import subprocess
 import threading
 import time
 import unittest
@@ -106,6 +107,40 @@ class Timeouts(unittest.TestCase):
                 highest = max(highest, self.latest.state.roll)
             time.sleep(0.005)
         self.assertAlmostEqual(highest, 0.03, delta=0.002)
+
+    def test_4_a_publisher_killed_mid_stream(self):
+        # Another process publishes a tilt at 50 Hz and is killed (SIGKILL: no goodbye on its
+        # connection). The node carries on, and the board levels a tilt timeout (0.5 s) after
+        # the last command it had.
+        script = ("import rospy\n"
+                  "from marble_maze.msg import BoardTilt\n"
+                  "rospy.init_node('doomed_publisher', disable_signals=True)\n"
+                  "pub = rospy.Publisher('tilt', BoardTilt, queue_size=10)\n"
+                  "rate = rospy.Rate(50)\n"
+                  "while True:\n"
+                  "    pub.publish(BoardTilt(roll=0.04, pitch=0.0))\n"
+                  "    rate.sleep()\n")
+        doomed = subprocess.Popen(["/usr/bin/python3", "-c", script])
+        try:
+            tilted = self.latest.wait_for(lambda s, e: s.roll > 0.039, timeout=3 * WAIT)
+            self.assertIsNotNone(tilted, "the doomed publisher's tilt never came")
+            time.sleep(1.0)  # it is publishing: the board stays tilted past the timeout
+            with self.latest.lock:
+                self.assertGreater(self.latest.state.roll, 0.039)
+        finally:
+            doomed.kill()
+            doomed.wait()
+        with self.latest.lock:
+            killed_at = self.latest.state.header.stamp
+        # The timeout acts about 0.5 s after the last command: the board starts down then.
+        falling = self.latest.wait_for(lambda s, e: s.roll < 0.039)
+        self.assertIsNotNone(falling, "the board stayed tilted after its publisher died")
+        self.assertAlmostEqual((falling.header.stamp - killed_at).to_sec(), 0.5, delta=0.25)
+        levelled = self.latest.wait_for(lambda s, e: abs(s.roll) < 1e-9 and abs(s.pitch) < 1e-9)
+        self.assertIsNotNone(levelled, "the board did not level after its publisher died")
+        later = self.latest.wait_for(lambda s, e: s.header.stamp > levelled.header.stamp)
+        self.assertIsNotNone(later, "the node stopped publishing")
+
 
 if __name__ == "__main__":
     rostest.rosrun("marble_maze", "test_timeouts", Timeouts)

@@ -86,6 +86,10 @@ void Session::place(const Vec3& position_in_board, const Vec3& velocity, const V
   if (velocity.norm() > 1e5 * p.marble_radius / p.step)
     throw std::invalid_argument(
         "velocity: more than 1e5 radii a step, which a step cannot resolve");
+  if (spin.norm() * p.marble_radius > 1e5 * p.marble_radius / p.step)  // its surface as fast
+    throw std::invalid_argument(
+        "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
+        "resolve");
   sim_.placeMarble(position_in_board, velocity, spin);
   finished_ = false;
 }

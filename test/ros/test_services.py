@@ -13,6 +13,7 @@
     value is refused and nothing changes; the values in force are on the parameter server;
   - /diagnostics carries the real-time factor; odom is published in world with child marble.
 """
+import math
 import os
 import tempfile
 import threading
@@ -178,6 +179,33 @@ class ServicesTest(unittest.TestCase):
         odom = self.odom.wait(lambda m: True)
         self.assertEqual((odom.header.frame_id, odom.child_frame_id), ("world", "marble"))
 
+
+    def test_7_bad_arguments_and_calls_at_the_wrong_moment(self):
+        # Refused with the argument named, and the node runs on in a valid state.
+        nan = float("nan")
+        bad_velocity = self.place(0.03, 0.02, RADIUS, (nan, 0, 0))
+        self.assertFalse(bad_velocity.success)
+        self.assertIn("finite", bad_velocity.message)
+        fast = self.place(0.03, 0.02, RADIUS, (1e9, 0, 0))
+        self.assertFalse(fast.success)
+        self.assertIn("velocity", fast.message)
+        spin = self.place(0.03, 0.02, RADIUS, (0, 0, 0), (0, 1e12, 0))
+        self.assertFalse(spin.success)
+        self.assertIn("angular_velocity", spin.message)
+        endless = call("load_maze", LoadMaze, "/dev/zero")  # a device with no end
+        self.assertFalse(endless.success)
+        self.assertIn("more than 16 MB", endless.message)
+        # Twice in a row, in every order: each answers, none breaks the next.
+        for service in ("pause", "pause", "resume", "resume", "reset", "pause", "reset"):
+            self.assertTrue(call(service, Trigger).success, service)
+        placed = self.place(0.03, 0.02, RADIUS)  # while paused: it takes effect at once
+        self.assertTrue(placed.success, placed.message)
+        loaded = call("load_maze", LoadMaze, rospy.get_param("~maze"))  # while paused
+        self.assertTrue(loaded.success, loaded.message)
+        state = call("step", Step, 100).state
+        for v in (state.position, state.velocity, state.angular_velocity):
+            self.assertTrue(all(math.isfinite(c) for c in (v.x, v.y, v.z)))
+        self.assertTrue(call("resume", Trigger).success)
 
 if __name__ == "__main__":
     rospy.init_node("test_services")

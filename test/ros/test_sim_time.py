@@ -63,14 +63,15 @@ class Clock_:
         self.now_ns = START_NS
         self.target_ns = START_NS
         self.published_ns = None  # the latest value published: the node cannot know a later one
+        self.tick_ns = TICK_NS
         threading.Thread(target=self._run, daemon=True).start()
 
     def _run(self):
         while not rospy.is_shutdown():
             with self.lock:
                 if self.started:
-                    if self.now_ns + TICK_NS <= self.target_ns:
-                        self.now_ns += TICK_NS
+                    if self.now_ns + self.tick_ns <= self.target_ns:
+                        self.now_ns += self.tick_ns
                     self.published_ns = self.now_ns
                     value = self.now_ns
                 else:
@@ -91,6 +92,11 @@ class Clock_:
         with self.lock:
             return self.published_ns
 
+    def set_tick(self, tick_ns):
+        """Each tick (of TICK_WALL of wall time) advances the clock by tick_ns."""
+        with self.lock:
+            self.tick_ns = tick_ns
+
     def restart(self, at_ns):
         """Jumps back to at_ns (a restarted simulator, a looping bag) and holds there."""
         with self.lock:
@@ -100,7 +106,7 @@ class Clock_:
         """Ticks up to target_ns and returns when the clock is there (it then holds)."""
         with self.lock:
             self.target_ns = target_ns
-        deadline = time.time() + WAIT + 2 * TICK_WALL * (target_ns - self.now()) / TICK_NS
+        deadline = time.time() + WAIT + 2 * TICK_WALL * (target_ns - self.now()) / self.tick_ns
         while self.now() < target_ns:
             assert time.time() < deadline, "the clock thread does not tick"
             time.sleep(0.005)
@@ -312,6 +318,39 @@ class SimTimeTest(unittest.TestCase):
         self.settle()
         for m in self.since(before):
             self.assertNotAlmostEqual(m.roll, -0.05, delta=1e-6, msg="the held tilt acted")
+
+    def test_8_clock_jumps_an_hour_forward(self):
+        # The node skips the hour (a stalled simulator, a bag played from later on) instead of
+        # replaying 3.6 million steps in a burst, and follows the clock from there.
+        index = self.count()
+        jumped_from = self.clock.now()
+        self.clock.restart(jumped_from + 3600 * 10**9)
+        self.clock.advance_to(self.clock.now() + 30 * TICK_NS)
+        self.settle()
+        states = self.since(index)
+        self.assertTrue(states, "no marble_state after the jump")
+        within = [m for m in states if jumped_from < ns(m.header.stamp) < self.clock.now() - 10**9]
+        self.assertLess(len(within), 100, "the jumped hour was replayed: %d states" % len(within))
+        self.check_latest_follows_clock()
+        self.check_not_ahead()
+
+    def test_9_clock_a_thousand_times_faster(self):
+        # 20 s of clock per 20 ms of wall time for 2 s: the node keeps up or skips ahead, never
+        # runs ahead of the clock, and its marble stays finite.
+        index = self.count()
+        self.clock.set_tick(int(1000 * TICK_WALL * 10**9))  # 1000 x real time
+        try:
+            self.clock.advance_to(self.clock.now() + 2000 * 10**9)
+        finally:
+            self.clock.set_tick(TICK_NS)
+        self.clock.advance_to(self.clock.now() + 30 * TICK_NS)
+        self.settle()
+        states = self.since(index)
+        self.assertGreater(len(states), 20)
+        for m in states:
+            self.assertTrue(math.isfinite(m.position_in_board.x + m.velocity.x), m)
+        self.check_latest_follows_clock()
+        self.check_not_ahead()
 
 
 if __name__ == "__main__":

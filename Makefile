@@ -23,10 +23,11 @@ bench: build
 tradeoff: build
 	@bash scripts/tradeoff.sh
 
-# Long runs: 10 million steps at rest and of random tilting (make test runs a million of each).
+# Long runs: 10 million steps at rest and of random tilting, and an hour of simulated time of a
+# session played and called at random (make test runs a million, a million and six minutes).
 soak: deps
 	@bash scripts/build.sh tests
-	@. scripts/workspace.sh && MARBLE_MAZE_SOAK_STEPS=10000000 \
+	@. scripts/workspace.sh && MARBLE_MAZE_SOAK_STEPS=10000000 MARBLE_MAZE_SOAK_SECONDS=3600 \
 	  "$$WS/devel/lib/marble_maze/test_core" --gtest_filter='Soak.*'
 
 # The fuzzers for longer: FUZZ_SECONDS each (default 300; make test runs them 30 s each).

@@ -241,6 +241,21 @@ class RecordReplayTest(unittest.TestCase):
         for error in ("TF_REPEATED_DATA", "TF_OLD_DATA"):
             self.assertNotIn(error, said)
 
+    def test_5_the_bag_lost_nothing(self):
+        # roscpp numbers each publisher's messages (header.seq): the recorded states and events
+        # come one after another without a gap, and the inputs, numbered by the node, too.
+        messages = [m for _, m, _ in rosbag.Bag(self.session).read_messages()]
+        for kind in ("marble_maze/MarbleState", "marble_maze/MazeEvent"):
+            seqs = [m.header.seq for m in messages if m._type == kind]
+            self.assertTrue(seqs, "no %s in the bag" % kind)
+            gaps = [(a, b) for a, b in zip(seqs, seqs[1:]) if b != a + 1]
+            self.assertFalse(gaps, "%s: gaps in header.seq: %s" % (kind, gaps[:5]))
+        indices = [m.index for m in inputs(self.session)]
+        self.assertEqual(indices, list(range(indices[0], indices[0] + len(indices))))
+        print("bag: %d states, %d events, %d inputs, no gap"
+              % (len(states(self.session)),
+                 sum(m._type == "marble_maze/MazeEvent" for m in messages), len(indices)))
+
 
 if __name__ == "__main__":
     if any(arg.startswith("--gtest_output=xml:") for arg in sys.argv):

@@ -1,6 +1,6 @@
-// Fuzzes the maze-file parser with whatever text libFuzzer makes of its corpus (fuzz/corpus/maze and
-// mazes/: shipped mazes and broken ones). A text is either refused with a MazeFileError that names
-// the file, or it is a maze a simulation runs on: 20 steps under a tilt, the marble finite.
+// Fuzzes the maze-file parser with whatever text libFuzzer makes of its corpus (fuzz/corpus/maze
+// and mazes/: shipped mazes and broken ones). A text is either refused with a MazeFileError that
+// names the file, or it is a maze a simulation runs on: 20 steps under a tilt, the marble finite.
 // Anything else (another exception, a crash, undefined behaviour, a hang) is a finding.
 #include <cstddef>
 #include <cstdint>

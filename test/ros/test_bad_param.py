@@ -62,17 +62,22 @@ class BadParamTest(unittest.TestCase):
             self.assertIn(word, output, "the message does not name %r:\n%s" % (word, output))
         return output
 
-    def test_control_good_params_keep_running(self):
-        process = self.start("bp_control", "_restitution:=0.7", "_maze:=classic",
-                             "_preset:=fast", "_integrator:=rk4")
+    def check_runs(self, name, *params):
+        """The node still runs CONTROL_RUN after starting with `params`; returns its output."""
+        process = self.start(name, *params)
         try:
             process.wait(timeout=CONTROL_RUN)
-            self.fail("the node exited (status %s) with good parameters; output:\n%s"
-                      % (process.returncode, process.communicate()[0]))
+            self.fail("the node exited (status %s) with %s; output:\n%s"
+                      % (process.returncode, " ".join(params), process.communicate()[0]))
         except subprocess.TimeoutExpired:
             pass
         output = self.stop(process)
         self.assertNotIn("FATAL", output)
+        return output
+
+    def test_control_good_params_keep_running(self):
+        output = self.check_runs("bp_control", "_restitution:=0.7", "_maze:=classic",
+                                 "_preset:=fast", "_integrator:=rk4")
         # The preset set the step; the integrator set after it overrides the preset's.
         self.assertIn("integrator rk4, step 0.005 s", output)
 
@@ -138,14 +143,7 @@ class BadParamTest(unittest.TestCase):
 
     def test_a_start_position_as_a_list_is_taken(self):
         # ROS's list form of a vector parameter: the start cell's centre, on the floor.
-        process = self.start("bp_sixteen", "_start_position:=[-0.12195, 0.098875, 0.006]")
-        try:
-            process.wait(timeout=CONTROL_RUN)
-            self.fail("the node exited (status %s) with a list start_position; output:\n%s"
-                      % (process.returncode, process.communicate()[0]))
-        except subprocess.TimeoutExpired:
-            pass
-        self.assertNotIn("FATAL", self.stop(process))
+        self.check_runs("bp_sixteen", "_start_position:=[-0.12195, 0.098875, 0.006]")
 
 
 if __name__ == "__main__":

@@ -141,6 +141,22 @@ class BadParamTest(unittest.TestCase):
         self.check_refused("bp_fifteen", ["_marble_radius:=0.015"], "marble_radius",
                            "does not fit the start cell")
 
+    def test_a_flag_of_the_wrong_type(self):
+        self.check_refused("bp_eighteen", ["_clock:=sometimes"], "clock", "true or false")
+
+    def test_a_maze_file_of_garbage_and_one_of_twenty_megabytes(self):
+        with tempfile.NamedTemporaryFile("wb", suffix=".yaml", delete=False) as garbage:
+            garbage.write(bytes(range(256)) * 40)
+        with tempfile.NamedTemporaryFile("wb", suffix=".yaml", delete=False) as huge:
+            huge.write(b"# " + b"x" * (20 << 20) + b"\n")
+        try:
+            self.check_refused("bp_nineteen", ["_maze:=" + garbage.name], "maze", garbage.name)
+            self.check_refused("bp_twenty", ["_maze:=" + huge.name], "maze", huge.name,
+                               "more than 16 MB")
+        finally:
+            os.unlink(garbage.name)
+            os.unlink(huge.name)
+
     def test_a_start_position_as_a_list_is_taken(self):
         # ROS's list form of a vector parameter: the start cell's centre, on the floor.
         self.check_runs("bp_sixteen", "_start_position:=[-0.12195, 0.098875, 0.006]")

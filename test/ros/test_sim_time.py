@@ -319,6 +319,33 @@ class SimTimeTest(unittest.TestCase):
         for m in self.since(before):
             self.assertNotAlmostEqual(m.roll, -0.05, delta=1e-6, msg="the held tilt acted")
 
+    def test_7b_commands_act_in_stamp_order_and_a_past_stamp_at_once(self):
+        # Two tilts ahead of the clock, sent latest first: they act in the order of their
+        # stamps. Then one stamped a second in the past acts at the next step.
+        now = self.clock.now()
+        late, early = BoardTilt(roll=0.03), BoardTilt(roll=0.02)
+        late.header.stamp = rospy.Time(0, now + 40 * TICK_NS)
+        early.header.stamp = rospy.Time(0, now + 20 * TICK_NS)
+        self.tilt_pub.publish(late)
+        self.tilt_pub.publish(early)
+        time.sleep(0.5)
+        index = self.count()
+        self.clock.advance_to(now + 60 * TICK_NS)
+        self.settle()
+        rolls = [m.roll for m in self.since(index)]
+        first_early = next(i for i, r in enumerate(rolls) if abs(r - 0.02) < 1e-9)
+        first_late = next(i for i, r in enumerate(rolls) if abs(r - 0.03) < 1e-9)
+        self.assertLess(first_early, first_late, rolls)
+        past = BoardTilt(roll=0.01)
+        past.header.stamp = rospy.Time(0, self.clock.now() - 10**9)
+        self.tilt_pub.publish(past)
+        time.sleep(0.5)
+        index = self.count()
+        self.clock.advance_to(self.clock.now() + 3 * TICK_NS)
+        self.settle()
+        self.assertTrue(any(abs(m.roll - 0.01) < 1e-9 for m in self.since(index)),
+                        "a command stamped in the past did not act")
+
     def test_8_clock_jumps_an_hour_forward(self):
         # The node skips the hour (a stalled simulator, a bag played from later on) instead of
         # replaying 3.6 million steps in a burst, and follows the clock from there.

@@ -411,21 +411,22 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
 
 bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {
   hit->tiles_visited = 0;
-  const Vec3 chord = w.path + w.bend;
-  const double sag = 0.25 * w.bend.norm();  // the farthest a bent path strays from its chord
-  const bool bent = sag > 0;
-  // The path's speed along s is largest at an end (its norm is convex), which bounds its length.
-  const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
-  if (!(length > 0)) return false;
   const double radius = w.radius;
-  const double touching = (radius + w.margin) * (radius + w.margin);
-  // The whole path grown by the radius: when it stays clear of the grid no tile is looked up.
+  // The whole path grown by the radius: when it stays clear of the grid (a marble in flight far
+  // from the board) nothing more is worked out.
   {
     Vec3 lo, hi;
     for (int a = 0; a < 3; ++a) coordinateRange(w, a, &lo[a], &hi[a]);
     const Vec3 grow = Vec3::Constant(radius + w.margin);
     if (!overlapsGrid(maze, lo - grow, hi + grow)) return false;
   }
+  const Vec3 chord = w.path + w.bend;
+  const double sag = 0.25 * w.bend.norm();  // the farthest a bent path strays from its chord
+  const bool bent = sag > 0;
+  // The path's speed along s is largest at an end (its norm is convex), which bounds its length.
+  const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
+  if (!(length > 0)) return false;
+  const double touching = (radius + w.margin) * (radius + w.margin);
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();

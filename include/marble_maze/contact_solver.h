@@ -54,6 +54,10 @@ class ContactSolver {
  private:
   void iterate(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
                std::vector<ContactOutcome>* outcomes);
+  /// Two contacts at right angles, solved directly (contact_pair.cpp) when one or both stick:
+  /// true with body, outcomes and frictions set; false, changing nothing, otherwise.
+  bool solvePair(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
+                 std::vector<ContactOutcome>* outcomes);
   void resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const;
   void measureWork(const std::vector<Contact>& contacts,
                    const std::vector<ContactOutcome>& outcomes);

@@ -85,6 +85,7 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   const double r = body->radius;
   // Effective mass of a sphere for a tangential impulse at its surface.
   const double tangent_mass = 1.0 / (inv_mass + r * r * inv_inertia);
+  if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
     double largest_change2 = 0;  // the square of any impulse's change in this sweep, (N s)^2

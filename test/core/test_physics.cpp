@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "marble_maze/contact_solver.h"
 #include "marble_maze/simulation.h"
 #include "scenes.h"
 
@@ -293,6 +294,40 @@ TEST(Impact, SimultaneousImpactsThatNewtonsLawWouldMakeGainEnergyStopInstead) {
   solver.impact({walls[0]}, &alone, &outcomes);
   EXPECT_NEAR(alone.velocity.x(), -approach.x(), 1e-12);  // e = 1 off one wall
   EXPECT_NEAR(alone.velocity.norm(), 1.0, 1e-12);
+}
+
+TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
+  // A marble on the floor against a wall (normals z and x), a board at rest. Pressed into both
+  // by a step of gravity across the groove, it stops dead: both contacts stick. Rolling along
+  // the groove as well, the floor keeps it rolling without slip and the wall's friction slides:
+  // the floor's contact point does not move, neither normal approaches. Exact to rounding,
+  // where the sweeps stop short (they converge by a factor of 0.15 to 0.4 a sweep).
+  Params p;
+  ContactSolver solver(p);
+  std::vector<Contact> groove(2);
+  groove[0].normal = Vec3(0, 0, 1);
+  groove[1].normal = Vec3(1, 0, 0);
+  for (Contact& c : groove) c.point = c.surface_velocity = Vec3::Zero();
+  MarbleBody body;
+  body.mass = p.marbleMass();
+  body.inertia = p.marbleInertia();
+  body.radius = p.marble_radius;
+  body.velocity = Vec3(-0.004, 0, -0.0098);  // a step of a tilted board's gravity
+  std::vector<ContactOutcome> outcomes;
+  solver.constrain(groove, &body, &outcomes);
+  EXPECT_LT(body.velocity.norm(), 1e-16);
+  EXPECT_LT(body.angular_velocity.norm() * body.radius, 1e-16);
+  body.velocity = Vec3(-0.004, 0.3, -0.0098);  // and rolling along the groove
+  body.angular_velocity = Vec3(-0.3 / body.radius, 0, 0);
+  solver.constrain(groove, &body, &outcomes);
+  const Vec3 floor_point =
+      body.velocity + body.angular_velocity.cross(-body.radius * groove[0].normal);
+  EXPECT_LT(floor_point.norm(), 1e-15);      // rolls on the floor without slip
+  EXPECT_NEAR(body.velocity.x(), 0, 1e-16);  // no approach to the wall
+  EXPECT_NEAR(body.velocity.z(), 0, 1e-16);  // nor to the floor
+  EXPECT_GT(outcomes[1].normal_impulse, 0);  // the wall presses
+  EXPECT_LT(body.velocity.y(), 0.3);         // and its friction slows the marble
+  EXPECT_GT(body.velocity.y(), 0.29);
 }
 
 // --- Rolling resistance and drag ---------------------------------------------------------------

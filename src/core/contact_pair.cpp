@@ -1,0 +1,123 @@
+// Two contacts at right angles (the floor and a wall, the common case on a tile grid) solved
+// directly: the Gauss-Seidel sweeps converge on them slowly, since each contact's friction pushes
+// the marble along the other's normal. With the normal impulses eliminated (a contact's normal
+// impulse answers its own approach and the other's friction along its normal), what is left is
+// which contacts stick and which slip:
+//   - both stick: a linear system in the frictions along the line where the surfaces meet, and
+//     the frictions across it known up to a squeeze of the marble between the two surfaces,
+//     which changes no velocity and is chosen inside both friction cones;
+//   - one sticks, the other slips: one equation in one unknown (the slip's friction per unit of
+//     slip), solved by Newton's method from below, where it converges monotonically.
+// The answer is taken only when every contact keeps to its law (presses, stays in its cone,
+// slips against its friction); otherwise the sweeps solve the pair (both slipping, one leaving).
+#include <cmath>
+
+#include "marble_maze/contact_solver.h"
+
+namespace marble_maze {
+
+bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitution,
+                              MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+  const Vec3& na = contacts[0].normal;
+  const Vec3& nb = contacts[1].normal;
+  if (std::abs(na.dot(nb)) > 1e-12) return false;
+  const double m = body->mass, r = body->radius, mu = params_.friction;
+  const double g = r * r / body->inertia, k = 1 / m + g;  // tangential compliance: k = 1/m + g
+  // The normal velocity change each contact needs (its target less its approach), per unit mass.
+  double need[2];
+  for (int i = 0; i < 2; ++i) {
+    const ContactOutcome& o = (*outcomes)[i];
+    const double target = (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
+    need[i] = target - (body->velocity - contacts[i].surface_velocity).dot(contacts[i].normal);
+  }
+  // In the frame of contact s and contact l (t = n_s x n_l along the line where they meet), the
+  // slips the frictions f (f_s = fs_a n_l + fs_b t, f_l = fl_a n_s + fl_b t) leave are
+  //   at s, across: A_s + g (fs_a - fl_a)      at s, along: Ws_t + k fs_b + fl_b / m
+  //   at l, across: A_l - g (fs_a - fl_a)      at l, along: Wl_t + k fl_b + fs_b / m
+  // with the normal impulses N_s = m need_s - fl_a, N_l = m need_l - fs_a.
+  struct Frame {
+    int s, l;
+    Vec3 t;
+    double A_s, A_l, ws_t, wl_t;
+  };
+  const auto frame = [&](int s, int l) {
+    Frame f{s, l, contacts[s].normal.cross(contacts[l].normal), 0, 0, 0, 0};
+    const Vec3& ns = contacts[s].normal;
+    const Vec3& nl = contacts[l].normal;
+    const Vec3 vs = body->velocity - contacts[s].surface_velocity;
+    const Vec3 vl = body->velocity - contacts[l].surface_velocity;
+    const Vec3& w = body->angular_velocity;
+    f.A_s = vs.dot(nl) - r * w.dot(f.t) + need[l];
+    f.A_l = vl.dot(ns) + r * w.dot(f.t) + need[s];
+    f.ws_t = vs.dot(f.t) + r * w.dot(nl);
+    f.wl_t = vl.dot(f.t) - r * w.dot(ns);
+    return f;
+  };
+  const auto inCone = [&](double a, double b, double normal) {
+    return normal > 0 && a * a + b * b <= mu * mu * normal * normal * (1 + 1e-9);
+  };
+  // Takes the frictions found in frame f: the impulses and velocities, when both press.
+  const auto take = [&](const Frame& f, double fs_a, double fs_b, double fl_a, double fl_b) {
+    const double Ns = m * need[f.s] - fl_a, Nl = m * need[f.l] - fs_a;
+    if (!(Ns > 0 && Nl > 0)) return false;
+    const Vec3& ns = contacts[f.s].normal;
+    const Vec3& nl = contacts[f.l].normal;
+    const Vec3 Fs = fs_a * nl + fs_b * f.t, Fl = fl_a * ns + fl_b * f.t;
+    body->velocity += (Ns * ns + Fs + Nl * nl + Fl) / m;
+    body->angular_velocity += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / body->inertia;
+    (*outcomes)[f.s].normal_impulse = Ns;
+    (*outcomes)[f.l].normal_impulse = Nl;
+    friction_impulses_[f.s] = Fs;
+    friction_impulses_[f.l] = Fl;
+    return true;
+  };
+
+  const Frame ab = frame(0, 1);
+  const double d = -ab.A_s / g;  // fs_a - fl_a when s sticks
+  // Both stick: possible only when the two ask the same across (A_s + A_l = 0, as on a board
+  // at rest); along, a 2 x 2 system; across, a squeeze fs_a = fl_a + d free within the cones.
+  if (std::abs(ab.A_s + ab.A_l) < 1e-13) {
+    const double det = k * k - 1 / (m * m);
+    const double fs_b = (-ab.ws_t * k + ab.wl_t / m) / det;
+    const double fl_b = (-ab.wl_t * k + ab.ws_t / m) / det;
+    for (const double fl_a : {-0.5 * d, 0.0, -d}) {  // the least friction first
+      const double fs_a = fl_a + d;
+      if (inCone(fs_a, fs_b, m * need[0] - fl_a) && inCone(fl_a, fl_b, m * need[1] - fs_a))
+        return take(ab, fs_a, fs_b, fl_a, fl_b);
+    }
+  }
+  // One sticks (s), the other slips (l): the slip across is S = A_s + A_l whatever the
+  // frictions, along it is beta + gamma fl_b, and the slip's friction is -lambda times its slip,
+  // with lambda = mu N_l / |slip| and N_l = C + lambda S.
+  for (const Frame& f : {ab, frame(1, 0)}) {
+    const double ds = -f.A_s / g;
+    const double S = f.A_s + f.A_l;
+    const double beta = f.wl_t - f.ws_t / (m * k), gamma = k - 1 / (m * m * k);
+    const double C = m * need[f.l] - ds;
+    const double plain = std::sqrt(S * S + beta * beta);  // the slip's size at lambda = 0
+    if (!(C > 0 && plain - mu * S > 0)) continue;
+    // phi(lambda) = lambda |slip(lambda)| - mu (C + lambda S): convex and increasing from
+    // -mu C; Newton from the root with gamma = 0, which lies below it, converges from below.
+    double lambda = mu * C / (plain - mu * S);
+    bool converged = false;
+    for (int iteration = 0; iteration < 20 && !converged; ++iteration) {
+      const double q = 1 + lambda * gamma, along = beta / q;
+      const double size = std::sqrt(S * S + along * along);
+      const double phi = lambda * size - mu * (C + lambda * S);
+      const double slope =
+          size + (size > 0 ? lambda * along * (-beta * gamma / (q * q)) / size : 0) - mu * S;
+      if (!(slope > 0)) break;
+      const double next = lambda - phi / slope;
+      converged = std::abs(next - lambda) <= 1e-15 * next;
+      lambda = next;
+    }
+    if (!(converged && lambda > 0)) continue;
+    const double fl_a = -lambda * S, fl_b = -lambda * beta / (1 + lambda * gamma);
+    const double fs_a = fl_a + ds, fs_b = -(f.ws_t + fl_b / m) / k;
+    if (!inCone(fs_a, fs_b, m * need[f.s] - fl_a)) continue;
+    if (take(f, fs_a, fs_b, fl_a, fl_b)) return true;
+  }
+  return false;
+}
+
+}  // namespace marble_maze

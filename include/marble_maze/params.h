@@ -61,6 +61,9 @@ struct Params {
   double bounceThreshold() const;
   /// The least bounce threshold the integrator and the substep allow.
   double leastBounceThreshold() const;
+  /// The fastest a step resolves (m/s): 1e5 radii a step. The sweep walks a step's path in at
+  /// most a million pieces of a radius; a faster marble could pass a wall unseen.
+  double mostSpeed() const { return 1e5 * marble_radius / step; }
 };
 
 /// A bad key or value; the message names the key and what was expected.

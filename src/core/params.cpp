@@ -379,13 +379,10 @@ void validate(const Params& p) {
         << " m/s, which semi_implicit_euler needs; raise it, shorten the step or leave it auto";
     throw ParamError(msg.str());
   }
-  // The sweep walks a step's path in at most a million pieces of a radius: a faster marble could
-  // pass a wall unseen.
-  const double most_speed = 1e5 * p.marble_radius / p.step;
-  if (p.start_velocity.stableNorm() > most_speed) {
+  if (p.start_velocity.stableNorm() > p.mostSpeed()) {
     std::ostringstream msg;
     msg << "start_velocity: " << p.start_velocity.stableNorm() << " m/s is more than the "
-        << most_speed << " m/s (1e5 radii a step) that a step resolves";
+        << p.mostSpeed() << " m/s (1e5 radii a step) that a step resolves";
     throw ParamError(msg.str());
   }
   if (std::abs(p.initial_roll) > p.tilt_limit || std::abs(p.initial_pitch) > p.tilt_limit)

@@ -83,10 +83,10 @@ void Session::place(const Vec3& position_in_board, const Vec3& velocity, const V
   if (!velocity.allFinite() || !spin.allFinite())
     throw std::invalid_argument("the velocity and the spin must be finite");
   const Params& p = sim_.params();
-  if (velocity.norm() > 1e5 * p.marble_radius / p.step)
+  if (velocity.norm() > p.mostSpeed())
     throw std::invalid_argument(
         "velocity: more than 1e5 radii a step, which a step cannot resolve");
-  if (spin.norm() * p.marble_radius > 1e5 * p.marble_radius / p.step)  // its surface as fast
+  if (spin.norm() * p.marble_radius > p.mostSpeed())  // its surface as fast
     throw std::invalid_argument(
         "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
         "resolve");

@@ -11,9 +11,11 @@ namespace marble_maze {
 /// The most a maze file or a tilt programme may hold: far above a 1000 x 1000 cell maze (4 MB).
 constexpr std::size_t kMostTextFileBytes = 16u << 20;
 
-/// A file that cannot be read as text: what() reads "PATH: why".
+/// A file that cannot be read as text: what() reads "PATH: reason".
 struct TextFileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  TextFileError(const std::string& path, const std::string& reason)
+      : std::runtime_error(path + ": " + reason), reason(reason) {}
+  std::string reason;  ///< without the path
 };
 
 /// The whole of the file at `path`; throws TextFileError when it cannot be read, is a directory,

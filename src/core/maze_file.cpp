@@ -7,9 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "marble_maze/embedded_mazes.h"
@@ -516,8 +513,7 @@ Scene loadSceneFile(const std::string& path, const Params& defaults) {
   try {
     text = readTextFile(path);
   } catch (const TextFileError& e) {
-    const std::string why = e.what();
-    throw MazeFileError(path, 0, 0, why.substr(path.size() + 2));
+    throw MazeFileError(path, 0, 0, e.reason);
   }
   return parseScene(text, path, defaults);
 }

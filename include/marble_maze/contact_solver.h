@@ -54,6 +54,11 @@ class ContactSolver {
  private:
   void iterate(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
                std::vector<ContactOutcome>* outcomes);
+  /// The normal speed a contact leaves at (eq. (1)): e times its approach when it bounces and
+  /// restitution applies, else 0 (it rests or rolls on the tile).
+  double leavingSpeed(const ContactOutcome& o, bool restitution) const {
+    return (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
+  }
   /// Two contacts at right angles, solved directly (contact_pair.cpp) when one or both stick:
   /// true with body, outcomes and frictions set; false, changing nothing, otherwise.
   bool solvePair(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,

@@ -23,13 +23,12 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
   if (std::abs(na.dot(nb)) > 1e-12) return false;
   const double m = body->mass, r = body->radius, mu = params_.friction;
   const double g = r * r / body->inertia, k = 1 / m + g;  // tangential compliance: k = 1/m + g
+  const double gamma = k - 1 / (m * m * k);  // how a slip's friction along t turns its slip
   // The normal velocity change each contact needs (its target less its approach), per unit mass.
   double need[2];
-  for (int i = 0; i < 2; ++i) {
-    const ContactOutcome& o = (*outcomes)[i];
-    const double target = (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
-    need[i] = target - (body->velocity - contacts[i].surface_velocity).dot(contacts[i].normal);
-  }
+  for (int i = 0; i < 2; ++i)
+    need[i] = leavingSpeed((*outcomes)[i], restitution) -
+              (body->velocity - contacts[i].surface_velocity).dot(contacts[i].normal);
   // In the frame of contact s and contact l (t = n_s x n_l along the line where they meet), the
   // slips the frictions f (f_s = fs_a n_l + fs_b t, f_l = fl_a n_s + fl_b t) leave are
   //   at s, across: A_s + g (fs_a - fl_a)      at s, along: Ws_t + k fs_b + fl_b / m
@@ -92,7 +91,7 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
   for (const Frame& f : {ab, frame(1, 0)}) {
     const double ds = -f.A_s / g;
     const double S = f.A_s + f.A_l;
-    const double beta = f.wl_t - f.ws_t / (m * k), gamma = k - 1 / (m * m * k);
+    const double beta = f.wl_t - f.ws_t / (m * k);
     const double C = m * need[f.l] - ds;
     const double plain = std::sqrt(S * S + beta * beta);  // the slip's size at lambda = 0
     if (!(C > 0 && plain - mu * S > 0)) continue;

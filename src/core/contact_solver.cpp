@@ -6,8 +6,9 @@
 namespace marble_maze {
 namespace {
 
-// Gauss-Seidel sweeps over the contacts. One contact, or contacts at right angles as on a tile
-// grid, are solved exactly by one sweep; a few more settle edges and corners.
+// Gauss-Seidel sweeps over the contacts. One contact is solved exactly by one sweep, two at right
+// angles directly (solvePair) when one of them sticks; the sweeps settle the rest (corners, edges,
+// two contacts both slipping), converging by a factor of 0.15 to 0.4 a sweep.
 constexpr int kMaxIterations = 8;
 // A velocity change below this (m/s) is rounding: the sweeps have converged.
 constexpr double kConverged = 1e-12;
@@ -80,12 +81,12 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   const bool rolling = params_.model == Model::Rolling && params_.friction > 0;
   friction_impulses_.assign(contacts.size(), Vec3::Zero());
   for (auto& o : *outcomes) o.normal_impulse = 0;
+  if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
   const double inv_mass = 1.0 / body->mass;
   const double inv_inertia = 1.0 / body->inertia;
   const double r = body->radius;
   // Effective mass of a sphere for a tangential impulse at its surface.
   const double tangent_mass = 1.0 / (inv_mass + r * r * inv_inertia);
-  if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
     double largest_change2 = 0;  // the square of any impulse's change in this sweep, (N s)^2
@@ -94,7 +95,7 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
       ContactOutcome& o = (*outcomes)[i];
       // Eq. (1): the normal part of the velocity relative to the board's surface leaves at
       // e times its approach speed; resting contacts leave at zero.
-      const double target = (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
+      const double target = leavingSpeed(o, restitution);
       const double normal_speed = (body->velocity - c.surface_velocity).dot(c.normal);
       const double impulse = std::max(0.0, o.normal_impulse + (target - normal_speed) * body->mass);
       const double normal_change = impulse - o.normal_impulse;

@@ -23,6 +23,7 @@
 #include "marble_maze/board.h"
 #include "maze_description.h"
 #include "maze_markers.h"
+#include "run_node.h"
 
 namespace {
 namespace mm = marble_maze;
@@ -171,14 +172,5 @@ class AutopilotNode {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "autopilot");
-  ros::NodeHandle nh, pnh("~");
-  try {
-    AutopilotNode node(nh, pnh);
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL("%s", e.what());
-    return 1;
-  }
-  return 0;
+  return marble_maze_ros::runNode<AutopilotNode>(argc, argv, "autopilot");
 }

@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "recording.h"
+#include "run_node.h"
 #include "state_output.h"
 
 namespace {
@@ -94,14 +95,5 @@ class ReplayNode {
 }  // namespace
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "replay");
-  ros::NodeHandle nh, pnh("~");
-  try {
-    ReplayNode node(nh, pnh);
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL("%s", e.what());
-    return 1;
-  }
-  return 0;
+  return marble_maze_ros::runNode<ReplayNode>(argc, argv, "replay");
 }

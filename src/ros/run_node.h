@@ -1,0 +1,27 @@
+// The main() of every node of the package: a node class built from its handles and spun, and a
+// refusal at start (a bad parameter, a bag that cannot be read) a FATAL and exit status 1.
+#pragma once
+
+#include <ros/ros.h>
+
+#include <exception>
+
+namespace marble_maze_ros {
+
+template <typename Node>
+int runNode(int argc, char** argv, const char* name) {
+  ros::init(argc, argv, name);
+  // The handles outlive a throwing constructor: with the last handle gone roscpp shuts down and
+  // the FATAL message naming the bad parameter would never be printed.
+  ros::NodeHandle nh, pnh("~");
+  try {
+    Node node(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace marble_maze_ros

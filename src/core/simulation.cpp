@@ -279,10 +279,19 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
   return {b.velocity, b.angular_velocity};
 }
 
-void Simulation::chooseActingContacts() {
+void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {
   acting_.clear();
+  const double turn_change = (frame_.angular_velocity - previous_spin).norm();
   for (const Contact& c : contacts_) {
-    const bool leaving = (marble_.velocity - c.surface_velocity).dot(c.normal) > kRestingSpeed;
+    const Vec3 relative = marble_.velocity - c.surface_velocity;
+    // How much the normal velocity of the surface under the marble changes over the stretch:
+    // the marble crosses to other points of a turning board, |w| |v| h, and the board's turn
+    // changed speed since the marble last moved with it, |w - w_before| |p|. A departure slower
+    // than that is the lag of a contact held at the stretch's start point and the board's last
+    // motion: the contact acts, bringing the marble to the board's motion or letting it go.
+    const double drift =
+        frame_.angular_velocity.norm() * relative.norm() * duration + turn_change * c.point.norm();
+    const bool leaving = relative.dot(c.normal) > kRestingSpeed + drift;
     if (!(leaving && integrator_->bends())) acting_.push_back(c);
   }
 }
@@ -338,7 +347,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
   double done = 0;  // fraction of the substep
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
-    chooseActingContacts();
+    chooseActingContacts(rest, impacts == 0 ? start.angular_velocity : frame_.angular_velocity);
     dynamics.beginStretch();
     Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
                                            Stretch{rest, h, impacts > 0});

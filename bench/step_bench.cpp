@@ -51,6 +51,8 @@ void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_
   const double steps = static_cast<double>(std::max<std::size_t>(n, 1));
   state.counters["substeps"] = static_cast<double>(after.substeps - before.substeps) / steps;
   state.counters["sweeps/step"] = static_cast<double>(after.sweeps - before.sweeps) / steps;
+  state.counters["clear/step"] =
+      static_cast<double>(after.sweeps_clear - before.sweeps_clear) / steps;
   state.counters["tiles/step"] =
       static_cast<double>(after.tiles_swept - before.tiles_swept) / steps;
 }

@@ -44,12 +44,23 @@ struct Contact {
   Index3 tile = Index3::Zero();
 };
 
+/// The solid tiles around the marble, as far as `skin` beyond its contacts' reach (radius plus
+/// margin) along each grid axis: what a short path could meet. With them a sweep shorter than
+/// the gap to the nearest is answered without walking the grid (Sweep::clearOf).
+struct NearTiles {
+  double skin = 0;             ///< m, set by the caller
+  double reach = 0;            ///< m, looked this far from `centre` along each axis
+  Vec3 centre = Vec3::Zero();  ///< grid frame
+  std::vector<Box> boxes;      ///< grid frame, in contact or not
+};
+
 /// Every tile within radius + margin of the marble's centre, one contact per surface direction
 /// (a floor of many tiles gives one contact). A tile adds no contact through a face it shares
 /// with a solid neighbour: there the neighbour's own face is the surface, so seams never act as
-/// edges. The cost depends on the marble's size, not on the maze's.
+/// edges. The cost depends on the marble's size, not on the maze's. With `near`, it also
+/// gathers the tiles within near->skin beyond that reach.
 void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, double radius,
-                  double margin, std::vector<Contact>* contacts);
+                  double margin, std::vector<Contact>* contacts, NearTiles* near = nullptr);
 
 /// The marble's centre moving relative to the board over a stretch of time, in the grid frame:
 /// centre(s) = from + path s + bend s^2 for s from 0 (the stretch's start) to 1 (its end). A
@@ -79,6 +90,11 @@ struct Sweep {
   }
   Vec3 at(double s) const { return from + s * (path + s * bend); }
   Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds
+  /// True when the path surely meets no tile: every near tile lies behind a plane it keeps to
+  /// or farther from its start than it strays (|path| + |bend|), and it stays where the near
+  /// tiles were gathered. What timeOfImpact would find then, without walking the grid; false
+  /// says nothing.
+  bool clearOf(const NearTiles& near) const;
 };
 
 /// The first impact along a sweep.

@@ -47,6 +47,7 @@ struct StepCounts {
   std::uint64_t substeps = 0;
   std::uint64_t sweeps = 0;
   std::uint64_t tiles_swept = 0;
+  std::uint64_t sweeps_clear = 0;  ///< sweeps answered by the near tiles, without a walk
 };
 
 /// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical
@@ -152,6 +153,7 @@ class Simulation {
   StepCounts counts_;
   std::vector<Event> events_;
   std::vector<Contact> contacts_;         // reused: no allocation per step
+  NearTiles near_;                        // around the marble at the substep's start
   std::vector<ContactOutcome> outcomes_;  // of the last impact
   // The contacts whose forces act over the current stretch, and what they did in its first
   // sample; a bent path leaves out the contacts it is leaving (it may come back to them: an

@@ -371,17 +371,23 @@ bool sphereBoxImpact(const Vec3& o, const Vec3& d, double radius, const Box& box
 }
 
 void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, double radius,
-                  double margin, std::vector<Contact>* contacts) {
+                  double margin, std::vector<Contact>* contacts, NearTiles* near) {
   contacts->clear();
   const Vec3 c = frame.toGrid(centre);  // step 1: eq. (4)
   const double reach = radius + margin;
-  const Vec3 extent = Vec3::Constant(reach);
+  const Vec3 extent = Vec3::Constant(reach + (near ? near->skin : 0));
+  if (near) {
+    near->reach = extent.x();
+    near->centre = c;
+    near->boxes.clear();
+  }
   if (!overlapsGrid(maze, c - extent, c + extent)) return;
   // Steps 2 and 3: the index range of the marble's extent, and the tiles that exist in it. The
   // contacts are gathered in the grid frame (normal, nearest point) and taken into the world
   // once each, after coplanar tiles have been merged.
   forEachSolidTile(
       maze, tileRange(maze, c - extent, c + extent), [&](const Index3& t, const Box& box) {
+        if (near) near->boxes.push_back(box);
         Vec3 q = closestPoint(box, c);  // step 4: the box's nearest point to the centre
         const Vec3 offset = c - q;
         const double distance2 = offset.squaredNorm();
@@ -407,6 +413,22 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
     contact.point = frame.toWorld(contact.point);
     contact.surface_velocity = frame.surfaceVelocity(contact.point);
   }
+}
+
+bool Sweep::clearOf(const NearTiles& near) const {
+  // Far beyond rounding, which moves a tile's bounds and the path's end by some 1e-16 m.
+  constexpr double kSure = 1e-9;                    // m
+  const double strays = path.norm() + bend.norm();  // |s path + s^2 bend| for s in [0, 1]
+  // A tile the near ones leave out lies beyond `near.reach` from where they were gathered
+  // along some axis; the path must come within the radius of it.
+  const double moved = (from - near.centre).cwiseAbs().maxCoeff();
+  if (!(moved + strays + radius + kSure < near.reach)) return false;
+  const double closest = radius + strays + kSure;
+  for (const Box& box : near.boxes)
+    if (!behindAPlane(*this, box) &&
+        (from - closestPoint(box, from)).squaredNorm() <= closest * closest)
+      return false;
+  return true;
 }
 
 bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {

@@ -212,10 +212,16 @@ void Simulation::substep(double h, double start_time) {
     marble_.velocity = frame_.surfaceVelocity(marble_.position);
     return;
   }
-  // Contacts against the board where it is at the start, moving as it moves over the substep.
+  // Contacts against the board where it is at the start, moving as it moves over the substep;
+  // and the tiles near enough for the substep's path to meet, about twice as far as it goes at
+  // the marble's speed relative to the board (at most a radius, which bounds the lookup's cost).
   GridFrame moving = start;
   moving.angular_velocity = frame_.angular_velocity;
-  findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin, &contacts_);
+  const double goes = (marble_.velocity - moving.surfaceVelocity(marble_.position)).norm() * h +
+                      params_.gravity * h * h;
+  near_.skin = std::min(params_.marble_radius, 2 * goes);
+  findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin, &contacts_,
+               &near_);
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
   // A contact struck at the start (a board kicking the marble) is an impulse before the
@@ -366,9 +372,13 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
       sweep.from = frame_.toGrid(marble_.position);
       sweep.path = frame_.rotation.transpose() * (path.displacement() - carried) - sweep.bend;
     }
+    // A path that cannot reach any tile near its start needs no walk of the grid. (After an
+    // impact the marble stands elsewhere on the board: the near tiles are not its own.)
     SweepHit hit;
-    const bool hits = timeOfImpact(maze_, frame_, sweep, &hit);
+    const bool clear = impacts == 0 && sweep.clearOf(near_);
+    const bool hits = !clear && timeOfImpact(maze_, frame_, sweep, &hit);
     ++counts_.sweeps;
+    counts_.sweeps_clear += clear;
     counts_.tiles_swept += hit.tiles_visited;
     if (!hits) {
       marble_.position = frame_.toWorld(sweep.at(1));

@@ -37,10 +37,12 @@ struct GridFrame {
 
 /// The marble touching one tile.
 struct Contact {
-  Vec3 normal;            ///< world, unit, from the tile towards the marble's centre
-  Vec3 point;             ///< world, the closest point of the tile
-  Vec3 surface_velocity;  ///< world, velocity of the board at `point` (v_b of eq. (1))
-  double depth = 0;       ///< radius minus distance: > 0 when the marble overlaps the tile
+  Vec3 normal;  ///< world, unit, from the tile towards the marble's centre
+  Vec3 point;   ///< world, the closest point of the tile
+  /// World, v_b of eq. (1): the board's velocity where the marble's surface meets the normal
+  /// (at `point` along the normal; across it, within |w| times the contact margin).
+  Vec3 surface_velocity;
+  double depth = 0;  ///< radius minus distance: > 0 when the marble overlaps the tile
   Index3 tile = Index3::Zero();
 };
 

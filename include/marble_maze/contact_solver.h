@@ -63,6 +63,10 @@ class ContactSolver {
   /// true with body, outcomes and frictions set; false, changing nothing, otherwise.
   bool solvePair(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
                  std::vector<ContactOutcome>* outcomes);
+  /// Three contacts at right angles (a corner), solved directly (contact_triple.cpp) when all
+  /// three stick: true with body, outcomes and frictions set; false, changing nothing, otherwise.
+  bool solveTriple(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
+                   std::vector<ContactOutcome>* outcomes);
   void resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const;
   void measureWork(const std::vector<Contact>& contacts,
                    const std::vector<ContactOutcome>& outcomes);

@@ -411,7 +411,11 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   for (Contact& contact : *contacts) {
     contact.normal = frame.rotation * contact.normal;
     contact.point = frame.toWorld(contact.point);
-    contact.surface_velocity = frame.surfaceVelocity(contact.point);
+    // The board's velocity where the marble's surface meets the normal (not at the tile's
+    // nearest point, up to the margin away, across the normal the same): so every contact of a
+    // marble wedged on a turning board asks the same rigid motion of it, as it must to stay
+    // wedged, instead of motions that differ by |w| times their depths.
+    contact.surface_velocity = frame.surfaceVelocity(centre - radius * contact.normal);
   }
 }
 

@@ -7,8 +7,9 @@ namespace marble_maze {
 namespace {
 
 // Gauss-Seidel sweeps over the contacts. One contact is solved exactly by one sweep, two at right
-// angles directly (solvePair) when one of them sticks; the sweeps settle the rest (corners, edges,
-// two contacts both slipping), converging by a factor of 0.15 to 0.4 a sweep.
+// angles directly (solvePair) when one of them sticks, three at right angles (solveTriple) when
+// all stick; the sweeps settle the rest (edges, two contacts both slipping, a corner the marble
+// slides in), converging by a factor of 0.15 to 0.4 a sweep.
 constexpr int kMaxIterations = 8;
 // A velocity change below this (m/s) is rounding: the sweeps have converged.
 constexpr double kConverged = 1e-12;
@@ -82,6 +83,7 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   friction_impulses_.assign(contacts.size(), Vec3::Zero());
   for (auto& o : *outcomes) o.normal_impulse = 0;
   if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
+  if (rolling && contacts.size() == 3 && solveTriple(contacts, restitution, body, outcomes)) return;
   const double inv_mass = 1.0 / body->mass;
   const double inv_inertia = 1.0 / body->inertia;
   const double r = body->radius;

@@ -330,6 +330,37 @@ TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
   EXPECT_GT(body.velocity.y(), 0.29);
 }
 
+TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
+  // A marble wedged in a corner (the floor and two walls: normals z, x and y) of a board turning
+  // at 0.36 rad/s about its pivot, 6 cm away. A step of gravity presses it into all three and it
+  // had drifted off the board's motion by a few mm/s and rad/s: all three stick, and it moves
+  // rigidly with the board, its velocity the board's at its centre and its spin the board's.
+  // Exact to rounding, where the sweeps stop short (they converge by a factor of 0.15 to 0.4 a
+  // sweep: here 1.5e-9 m/s and 2.5e-9 m/s at the surface off after 8).
+  Params p;
+  ContactSolver solver(p);
+  const Vec3 board_spin(0.3, -0.2, 0), centre(0.05, 0.04, p.marble_radius);
+  std::vector<Contact> corner(3);
+  corner[0].normal = Vec3(0, 0, 1);
+  corner[1].normal = Vec3(1, 0, 0);
+  corner[2].normal = Vec3(0, 1, 0);
+  for (Contact& c : corner) {
+    c.point = centre - p.marble_radius * c.normal;
+    c.surface_velocity = board_spin.cross(c.point);
+  }
+  MarbleBody body;
+  body.mass = p.marbleMass();
+  body.inertia = p.marbleInertia();
+  body.radius = p.marble_radius;
+  body.velocity = board_spin.cross(centre) + Vec3(-0.004, -0.003, -0.0098);
+  body.angular_velocity = board_spin + Vec3(0.2, -0.5, 0.3);
+  std::vector<ContactOutcome> outcomes;
+  solver.constrain(corner, &body, &outcomes);
+  EXPECT_LT((body.velocity - board_spin.cross(centre)).norm(), 1e-17);
+  EXPECT_LT((body.angular_velocity - board_spin).norm() * body.radius, 1e-17);
+  for (const ContactOutcome& o : outcomes) EXPECT_GT(o.normal_impulse, 0);  // all three press
+}
+
 // --- Rolling resistance and drag ---------------------------------------------------------------
 
 TEST(Resistance, RollingResistanceDeceleratesAtFiveSeventhsCrrG) {

@@ -32,7 +32,8 @@ struct ContactOutcome {
 
 class ContactSolver {
  public:
-  explicit ContactSolver(const Params& params) : params_(params) {}
+  explicit ContactSolver(const Params& params)
+      : params_(params), bounce_threshold_(params.bounceThreshold()) {}
 
   /// Whether a contact is approached faster than the bounce threshold: an impact.
   bool anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const;
@@ -72,6 +73,7 @@ class ContactSolver {
                    const std::vector<ContactOutcome>& outcomes);
 
   Params params_;
+  double bounce_threshold_;              // params_'s, worked out once
   std::vector<Vec3> friction_impulses_;  // reused: no allocation per step
   double surface_work_ = 0;
 };

@@ -144,6 +144,7 @@ class Simulation {
   ContactSolver solver_;
   FieldForces forces_;
   const Integrator* integrator_;  // stateless, shared
+  double mass_, inertia_;         // of the marble: params_'s, worked out once
   Marble marble_;
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame

@@ -28,7 +28,7 @@ double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity
 
 bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const {
   for (const Contact& c : contacts)
-    if (-(velocity - c.surface_velocity).dot(c.normal) > params_.bounceThreshold()) return true;
+    if (-(velocity - c.surface_velocity).dot(c.normal) > bounce_threshold_) return true;
   return false;
 }
 
@@ -41,7 +41,7 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* bod
     const Contact& c = contacts[i];
     const double approach = -(body->velocity - c.surface_velocity).dot(c.normal);
     (*outcomes)[i].approach_speed = approach;
-    (*outcomes)[i].bounce = approach > params_.bounceThreshold();
+    (*outcomes)[i].bounce = approach > bounce_threshold_;
   }
   const MarbleBody before = *body;
   iterate(contacts, true, body, outcomes);

@@ -28,7 +28,9 @@ Simulation::Simulation(const Scene& scene)
       board_(params_),
       solver_(params_),
       forces_(params_),
-      integrator_(&integratorFor(params_.integrator)) {
+      integrator_(&integratorFor(params_.integrator)),
+      mass_(params_.marbleMass()),
+      inertia_(params_.marbleInertia()) {
   validate(params_);
   reset();
   // The marble must start where it can be: not in a tile (a start position in a wall, a marble
@@ -53,6 +55,8 @@ void Simulation::setParams(const Params& params) {
   solver_ = ContactSolver(params_);
   forces_ = FieldForces(params_);
   integrator_ = &integratorFor(params_.integrator);
+  mass_ = params_.marbleMass();
+  inertia_ = params_.marbleInertia();
   frame_ = gridFrame();
 }
 
@@ -172,11 +176,11 @@ double Simulation::energy() const {
   // Kinetic and potential energy are taken together at the instant the integrator's velocity
   // belongs to: semi-implicit Euler's is the velocity half a substep back, where the marble was
   // at p - v h/2. (With both taken now, a bounce would seem to gain m g h |v_z|.)
-  const double m = params_.marbleMass();
+  const double m = mass_;
   const double h = params_.step / params_.substeps;
   const Vec3 position = marble_.position - integrator_->velocityLag() * h * marble_.velocity;
   return 0.5 * m * marble_.velocity.squaredNorm() +
-         0.5 * params_.marbleInertia() * marble_.angular_velocity.squaredNorm() +
+         0.5 * inertia_ * marble_.angular_velocity.squaredNorm() +
          m * params_.gravity * (position.z() + params_.board_position.z());
 }
 
@@ -229,11 +233,11 @@ void Simulation::substep(double h, double start_time) {
   if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
   advance(h, start_time, start);
   if (params_.model == Model::Rolling) {
-    const double angle = marble_.angular_velocity.norm() * h;
-    if (angle > 0)
-      marble_.orientation = (Quat(Eigen::AngleAxisd(angle, marble_.angular_velocity.normalized())) *
-                             marble_.orientation)
-                                .normalized();
+    const double spin = marble_.angular_velocity.norm();
+    if (spin * h > 0)
+      marble_.orientation =
+          (Quat(Eigen::AngleAxisd(spin * h, marble_.angular_velocity / spin)) * marble_.orientation)
+              .normalized();
   }
   checkFinish(start_time + h);
 }
@@ -254,8 +258,8 @@ MarbleBody Simulation::body() const {
   MarbleBody body;
   body.velocity = marble_.velocity;
   body.angular_velocity = marble_.angular_velocity;
-  body.mass = params_.marbleMass();
-  body.inertia = params_.marbleInertia();
+  body.mass = mass_;
+  body.inertia = inertia_;
   body.radius = params_.marble_radius;
   return body;
 }
@@ -287,7 +291,6 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
 
 void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {
   acting_.clear();
-  const double turn_change = (frame_.angular_velocity - previous_spin).norm();
   for (const Contact& c : contacts_) {
     const Vec3 relative = marble_.velocity - c.surface_velocity;
     // How much the normal velocity of the surface under the marble changes over the stretch:
@@ -295,9 +298,12 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     // changed speed since the marble last moved with it, |w - w_before| |p|. A departure slower
     // than that is the lag of a contact held at the stretch's start point and the board's last
     // motion: the contact acts, bringing the marble to the board's motion or letting it go.
-    const double drift =
-        frame_.angular_velocity.norm() * relative.norm() * duration + turn_change * c.point.norm();
-    const bool leaving = relative.dot(c.normal) > kRestingSpeed + drift;
+    const double away = relative.dot(c.normal);
+    const auto drift = [&] {
+      return frame_.angular_velocity.norm() * relative.norm() * duration +
+             (frame_.angular_velocity - previous_spin).norm() * c.point.norm();
+    };
+    const bool leaving = away > kRestingSpeed && away > kRestingSpeed + drift();
     if (!(leaving && integrator_->bends())) acting_.push_back(c);
   }
 }

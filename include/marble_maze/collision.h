@@ -53,7 +53,7 @@ struct NearTiles {
   double skin = 0;             ///< m, set by the caller
   double reach = 0;            ///< m, looked this far from `centre` along each axis
   Vec3 centre = Vec3::Zero();  ///< grid frame
-  std::vector<Box> boxes;      ///< grid frame, in contact or not
+  std::vector<Index3> tiles;   ///< solid, in contact or not
 };
 
 /// Every tile within radius + margin of the marble's centre, one contact per surface direction
@@ -96,7 +96,7 @@ struct Sweep {
   /// or farther from its start than it strays (|path| + |bend|), and it stays where the near
   /// tiles were gathered. What timeOfImpact would find then, without walking the grid; false
   /// says nothing.
-  bool clearOf(const NearTiles& near) const;
+  bool clearOf(const Maze& maze, const NearTiles& near) const;
 };
 
 /// The first impact along a sweep.

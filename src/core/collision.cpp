@@ -379,7 +379,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   if (near) {
     near->reach = extent.x();
     near->centre = c;
-    near->boxes.clear();
+    near->tiles.clear();
   }
   if (!overlapsGrid(maze, c - extent, c + extent)) return;
   // Steps 2 and 3: the index range of the marble's extent, and the tiles that exist in it. The
@@ -387,7 +387,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   // once each, after coplanar tiles have been merged.
   forEachSolidTile(
       maze, tileRange(maze, c - extent, c + extent), [&](const Index3& t, const Box& box) {
-        if (near) near->boxes.push_back(box);
+        if (near) near->tiles.push_back(t);
         Vec3 q = closestPoint(box, c);  // step 4: the box's nearest point to the centre
         const Vec3 offset = c - q;
         const double distance2 = offset.squaredNorm();
@@ -419,7 +419,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   }
 }
 
-bool Sweep::clearOf(const NearTiles& near) const {
+bool Sweep::clearOf(const Maze& maze, const NearTiles& near) const {
   // Far beyond rounding, which moves a tile's bounds and the path's end by some 1e-16 m.
   constexpr double kSure = 1e-9;                    // m
   const double strays = path.norm() + bend.norm();  // |s path + s^2 bend| for s in [0, 1]
@@ -428,10 +428,12 @@ bool Sweep::clearOf(const NearTiles& near) const {
   const double moved = (from - near.centre).cwiseAbs().maxCoeff();
   if (!(moved + strays + radius + kSure < near.reach)) return false;
   const double closest = radius + strays + kSure;
-  for (const Box& box : near.boxes)
+  for (const Index3& t : near.tiles) {
+    const Box box = maze.tileBox(t);
     if (!behindAPlane(*this, box) &&
         (from - closestPoint(box, from)).squaredNorm() <= closest * closest)
       return false;
+  }
   return true;
 }
 

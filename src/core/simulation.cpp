@@ -381,7 +381,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
     // A path that cannot reach any tile near its start needs no walk of the grid. (After an
     // impact the marble stands elsewhere on the board: the near tiles are not its own.)
     SweepHit hit;
-    const bool clear = impacts == 0 && sweep.clearOf(near_);
+    const bool clear = impacts == 0 && sweep.clearOf(maze_, near_);
     const bool hits = !clear && timeOfImpact(maze_, frame_, sweep, &hit);
     ++counts_.sweeps;
     counts_.sweeps_clear += clear;

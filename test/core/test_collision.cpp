@@ -261,7 +261,7 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
     SweepHit hit;
     const bool meets = timeOfImpact(maze, frame, sweep, &hit);
     hits += meets;
-    if (!sweep.clearOf(near)) continue;
+    if (!sweep.clearOf(maze, near)) continue;
     ++clear;
     EXPECT_FALSE(meets) << "from " << sweep.from.transpose() << " path " << sweep.path.transpose()
                         << " skin " << near.skin;

@@ -455,6 +455,10 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
   if (!(length > 0)) return false;
   const double touching = (radius + w.margin) * (radius + w.margin);
+  // No tile farther from the start than the radius plus how far the path strays from it
+  // (|path| + |bend|) can be met: those the walk's boxes take in at their corners are passed over
+  // before any root is sought.
+  const double within = radius + w.path.norm() + w.bend.norm() + 1e-9;
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();
@@ -475,6 +479,7 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
       const Vec3 away = w.from - closestPoint(box, w.from);
       const bool touches = away.squaredNorm() < touching;
       if (touches && !(bent && comesBack(w, away))) return;
+      if (away.squaredNorm() > within * within) return;
       double time;
       Vec3 q;
       if (touches) {

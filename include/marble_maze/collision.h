@@ -40,7 +40,8 @@ struct Contact {
   Vec3 normal;  ///< world, unit, from the tile towards the marble's centre
   Vec3 point;   ///< world, the closest point of the tile
   /// World, v_b of eq. (1): the board's velocity where the marble's surface meets the normal
-  /// (at `point` along the normal; across it, within |w| times the contact margin).
+  /// (at `point` along the normal; across it, within |w| times the marble's depth into the tile
+  /// or gap from it, at most the margin once pushed out). At an impact they are one point.
   Vec3 surface_velocity;
   double depth = 0;  ///< radius minus distance: > 0 when the marble overlaps the tile
   Index3 tile = Index3::Zero();
@@ -92,10 +93,10 @@ struct Sweep {
   }
   Vec3 at(double s) const { return from + s * (path + s * bend); }
   Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds
-  /// True when the path surely meets no tile: every near tile lies behind a plane it keeps to
-  /// or farther from its start than it strays (|path| + |bend|), and it stays where the near
-  /// tiles were gathered. What timeOfImpact would find then, without walking the grid; false
-  /// says nothing.
+  /// True when the walk of the grid (timeOfImpact) would report no impact: the path stays where
+  /// the near tiles were gathered, and each of them lies behind a plane it keeps to (as the walk
+  /// judges it) or farther from its start than the radius plus how far it strays (|path| +
+  /// |bend|). False says nothing.
   bool clearOf(const Maze& maze, const NearTiles& near) const;
 };
 

@@ -157,8 +157,8 @@ class Simulation {
   NearTiles near_;                        // around the marble at the substep's start
   std::vector<ContactOutcome> outcomes_;  // of the last impact
   // The contacts whose forces act over the current stretch, and what they did in its first
-  // sample; a bent path leaves out the contacts it is leaving (it may come back to them: an
-  // impact then, found by the sweep).
+  // sample; a bent path leaves out the contacts it is leaving (faster than resting and than the
+  // surface under it changes; it may come back to them: an impact then, found by the sweep).
   std::vector<Contact> acting_;
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };

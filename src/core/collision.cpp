@@ -515,6 +515,7 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   hit->fraction = best;
   hit->contact.normal = frame.rotation * best_normal;
   hit->contact.point = frame.toWorld(best_point);
+  // Met at the radius: the marble's surface meets the normal at the tile's point.
   hit->contact.surface_velocity = frame.surfaceVelocity(hit->contact.point);
   hit->contact.depth = 0;
   hit->contact.tile = best_tile;

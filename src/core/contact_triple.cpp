@@ -10,8 +10,10 @@
 // only through the spin they give, and only through a_ij - a_ji:
 //   s_ij = W_ij + g (a_ij - a_ji),   W_ij = (v - u_i) . n_j + need_j - r w . (n_i x n_j),
 // with g = r^2 / I. All three stick when each pair's difference stops both of its slips,
-// a_ij - a_ji = -W_ij / g = W_ji / g: possible only when W_ij + W_ji = 0 (a board at rest, or
-// one turning with the contacts' surfaces moving as one rigid body, as they do). The mean of
+// a_ij - a_ji = -W_ij / g = W_ji / g: possible only when W_ij + W_ji = 0. That holds, to
+// rounding, when no contact bounces and the contacts' surface velocities are the board's rigid
+// motion where the marble's surface meets each normal (as findContacts takes them), on a board
+// at rest or turning. The mean of
 // each pair, a squeeze of the marble between two surfaces, changes no velocity: the least
 // friction (zero means) is taken, and the answer is kept only when every normal impulse presses
 // and every friction lies in its cone; otherwise the sweeps solve the three.

@@ -15,7 +15,8 @@ constexpr double kContactMargin = 1e-7;  // m
 // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
 constexpr int kMaxImpactsPerSubstep = 4;
 // Slower than this across a contact the marble rests on it (what the contact solver leaves of a
-// velocity it stopped); faster it is leaving, and may come back within the step.
+// velocity it stopped); faster, and faster than the surface under it changes its normal velocity
+// over the stretch, it is leaving, and may come back within the step.
 constexpr double kRestingSpeed = 1e-5;  // m/s
 // The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
 constexpr double kMostTurn = 0.05;
@@ -303,8 +304,9 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
       return frame_.angular_velocity.norm() * relative.norm() * duration +
              (frame_.angular_velocity - previous_spin).norm() * c.point.norm();
     };
-    const bool leaving = away > kRestingSpeed && away > kRestingSpeed + drift();
-    if (!(leaving && integrator_->bends())) acting_.push_back(c);
+    const bool leaving =
+        integrator_->bends() && away > kRestingSpeed && away > kRestingSpeed + drift();
+    if (!leaving) acting_.push_back(c);
   }
 }
 

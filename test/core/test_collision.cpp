@@ -229,10 +229,11 @@ TEST(TimeOfImpact, ABentPathMeetsAnEdgeWhereItsDistanceFirstReachesTheRadius) {
 }
 
 TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
-  // Paths up to 4 mm long, straight and bent, some keeping to the floor, from 20,000 starts
-  // scattered over a generated maze near the floor and the walls: where the near tiles say a
-  // path meets nothing, the walk of the grid finds no impact either. Most short paths are
-  // clear; some meet a wall, so both answers are exercised.
+  // Paths up to 4 mm long, straight and bent, from 20,000 starts scattered over a generated
+  // maze near the floor and the walls, some above the grid; some keep to the floor, some to the
+  // face of a wall they touch, and some start up to a skin away from where the near tiles were
+  // gathered: where the near tiles say a path meets nothing, the walk of the grid finds no
+  // impact either. Most short paths are clear; some meet a wall, so both answers are exercised.
   const Maze maze = test::generatedMaze(10);
   const double r = 0.006, floor_top = maze.floorTop();
   std::mt19937 random(7);
@@ -245,8 +246,9 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
     Sweep sweep;
     sweep.radius = r;
     sweep.margin = 1e-7;
+    const double height = n % 7 == 0 ? uniform(0.01, 0.05) : uniform(0, 0.005);  // or above
     sweep.from = {uniform(0, maze.extent().x()), uniform(0, maze.extent().y()),
-                  on_floor ? floor_top + r : floor_top + r + uniform(0, 0.005)};
+                  on_floor ? floor_top + r : floor_top + r + height};
     const double length = uniform(0, 0.004);
     const double angle = uniform(0, 2 * test::kPi);
     sweep.path = length * Vec3(std::cos(angle), std::sin(angle), on_floor ? 0 : uniform(-1, 1));
@@ -258,6 +260,14 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
     GridFrame frame;  // the grid at the world's origin, at rest
     frame.grid_pivot = Vec3::Zero();
     findContacts(maze, frame, sweep.from, r, sweep.margin, &contacts, &near);
+    for (const Contact& c : contacts)  // keep to the face of a wall it touches, as a held one
+      if (n % 5 == 1 && std::abs(c.normal.z()) < 1e-12 &&
+          std::abs(std::abs(c.normal.x()) + std::abs(c.normal.y()) - 1) < 1e-12) {
+        sweep.path -= sweep.path.dot(c.normal) * c.normal;
+        sweep.keepTo(c.normal, c.point);
+      }
+    if (n % 4 == 3)  // started elsewhere than where the near tiles were gathered
+      sweep.from += near.skin * Vec3(uniform(-1, 1), uniform(-1, 1), on_floor ? 0 : uniform(-1, 1));
     SweepHit hit;
     const bool meets = timeOfImpact(maze, frame, sweep, &hit);
     hits += meets;

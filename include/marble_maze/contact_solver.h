@@ -60,6 +60,12 @@ class ContactSolver {
   double leavingSpeed(const ContactOutcome& o, bool restitution) const {
     return (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
   }
+  /// The change of the marble's normal speed a contact asks for: its leaving speed less the
+  /// normal speed of `velocity` relative to the contact's surface.
+  double normalNeed(const Contact& c, const ContactOutcome& o, bool restitution,
+                    const Vec3& velocity) const {
+    return leavingSpeed(o, restitution) - (velocity - c.surface_velocity).dot(c.normal);
+  }
   /// Two contacts at right angles, solved directly (contact_pair.cpp) when one or both stick:
   /// true with body, outcomes and frictions set; false, changing nothing, otherwise.
   bool solvePair(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,

@@ -169,6 +169,14 @@ bool behindAPlane(const Sweep& w, const Box& box) {
   return false;
 }
 
+/// How far from its start the marble of a sweep can reach a tile: its radius plus how far the
+/// path strays, |s path + s^2 bend| <= |path| + |bend| for s in [0, 1], with room for rounding
+/// (which moves a tile's bounds and the path's extremes by some 1e-16 m). No tile farther than
+/// this can be met.
+double farthestReach(const Sweep& w) {
+  return w.radius + w.path.norm() + w.bend.norm() + 1e-9;
+}
+
 /// Narrows a range of tiles to those in front of the planes the path keeps to that face along a
 /// grid axis (a floor, a wall): the tiles behind such a plane are not even looked up.
 void narrowToPlanes(const Maze& maze, const Sweep& w, TileRange* range) {
@@ -420,18 +428,15 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
 }
 
 bool Sweep::clearOf(const Maze& maze, const NearTiles& near) const {
-  // Far beyond rounding, which moves a tile's bounds and the path's end by some 1e-16 m.
-  constexpr double kSure = 1e-9;                    // m
-  const double strays = path.norm() + bend.norm();  // |s path + s^2 bend| for s in [0, 1]
+  const double farthest = farthestReach(*this);
   // A tile the near ones leave out lies beyond `near.reach` from where they were gathered
-  // along some axis; the path must come within the radius of it.
+  // along some axis.
   const double moved = (from - near.centre).cwiseAbs().maxCoeff();
-  if (!(moved + strays + radius + kSure < near.reach)) return false;
-  const double closest = radius + strays + kSure;
+  if (!(moved + farthest < near.reach)) return false;
   for (const Index3& t : near.tiles) {
     const Box box = maze.tileBox(t);
     if (!behindAPlane(*this, box) &&
-        (from - closestPoint(box, from)).squaredNorm() <= closest * closest)
+        (from - closestPoint(box, from)).squaredNorm() <= farthest * farthest)
       return false;
   }
   return true;
@@ -455,10 +460,9 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
   if (!(length > 0)) return false;
   const double touching = (radius + w.margin) * (radius + w.margin);
-  // No tile farther from the start than the radius plus how far the path strays from it
-  // (|path| + |bend|) can be met: those the walk's boxes take in at their corners are passed over
-  // before any root is sought.
-  const double within = radius + w.path.norm() + w.bend.norm() + 1e-9;
+  // Tiles beyond the marble's farthest reach, which the walk's boxes take in at their corners,
+  // are passed over before any root is sought.
+  const double farthest = farthestReach(w);
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();
@@ -479,7 +483,7 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
       const Vec3 away = w.from - closestPoint(box, w.from);
       const bool touches = away.squaredNorm() < touching;
       if (touches && !(bent && comesBack(w, away))) return;
-      if (away.squaredNorm() > within * within) return;
+      if (away.squaredNorm() > farthest * farthest) return;
       double time;
       Vec3 q;
       if (touches) {

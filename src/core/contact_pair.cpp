@@ -27,8 +27,7 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
   // The normal velocity change each contact needs (its target less its approach), per unit mass.
   double need[2];
   for (int i = 0; i < 2; ++i)
-    need[i] = leavingSpeed((*outcomes)[i], restitution) -
-              (body->velocity - contacts[i].surface_velocity).dot(contacts[i].normal);
+    need[i] = normalNeed(contacts[i], (*outcomes)[i], restitution, body->velocity);
   // In the frame of contact s and contact l (t = n_s x n_l along the line where they meet), the
   // slips the frictions f (f_s = fs_a n_l + fs_b t, f_l = fl_a n_s + fl_b t) leave are
   //   at s, across: A_s + g (fs_a - fl_a)      at s, along: Ws_t + k fs_b + fl_b / m

@@ -97,9 +97,8 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
       ContactOutcome& o = (*outcomes)[i];
       // Eq. (1): the normal part of the velocity relative to the board's surface leaves at
       // e times its approach speed; resting contacts leave at zero.
-      const double target = leavingSpeed(o, restitution);
-      const double normal_speed = (body->velocity - c.surface_velocity).dot(c.normal);
-      const double impulse = std::max(0.0, o.normal_impulse + (target - normal_speed) * body->mass);
+      const double impulse = std::max(
+          0.0, o.normal_impulse + normalNeed(c, o, restitution, body->velocity) * body->mass);
       const double normal_change = impulse - o.normal_impulse;
       body->velocity += normal_change * inv_mass * c.normal;
       largest_change2 = std::max(largest_change2, normal_change * normal_change);

@@ -32,8 +32,7 @@ bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, bool resti
   const Vec3& w = body->angular_velocity;
   double need[3];
   for (int i = 0; i < 3; ++i)
-    need[i] = leavingSpeed((*outcomes)[i], restitution) -
-              (body->velocity - contacts[i].surface_velocity).dot(contacts[i].normal);
+    need[i] = normalNeed(contacts[i], (*outcomes)[i], restitution, body->velocity);
   const auto W = [&](int i, int j) {
     const Vec3& ni = contacts[i].normal;
     const Vec3& nj = contacts[j].normal;

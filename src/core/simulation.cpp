@@ -388,7 +388,8 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
       sweep.path = frame_.rotation.transpose() * (path.displacement() - carried) - sweep.bend;
     }
     // A path that cannot reach any tile near its start needs no walk of the grid. (After an
-    // impact the marble stands elsewhere on the board: the near tiles are not its own.)
+    // impact the marble touches the tile it met and keeps to no plane: the near tiles could not
+    // clear its path.)
     SweepHit hit;
     const bool clear = impacts == 0 && sweep.clearOf(maze_, near_);
     const bool hits = !clear && timeOfImpact(maze_, frame_, sweep, &hit);

@@ -53,6 +53,7 @@ void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_
   state.counters["sweeps/step"] = static_cast<double>(after.sweeps - before.sweeps) / steps;
   state.counters["clear/step"] =
       static_cast<double>(after.sweeps_clear - before.sweeps_clear) / steps;
+  state.counters["gathers/step"] = static_cast<double>(after.gathers - before.gathers) / steps;
   state.counters["tiles/step"] =
       static_cast<double>(after.tiles_swept - before.tiles_swept) / steps;
 }

@@ -3,6 +3,7 @@
 // on the way (no tunnelling).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "marble_maze/geometry.h"
@@ -47,21 +48,30 @@ struct Contact {
   Index3 tile = Index3::Zero();
 };
 
-/// The solid tiles around the marble, as far as `skin` beyond its contacts' reach (radius plus
-/// margin) along each grid axis: what a short path could meet. With them a sweep shorter than
-/// the gap to the nearest is answered without walking the grid (Sweep::clearOf).
+/// The solid tiles around the marble, kept from one contact query to the next while it stays
+/// well inside where they were gathered: every solid tile within `reach` of `centre` along each
+/// grid axis, in the grid's order. The query needs those within its contacts' reach (radius plus
+/// margin) plus `skin`, what a short path could meet; when the marble has moved too far for that
+/// it gathers them anew, `slack` farther, so that they last a few substeps. With them a sweep
+/// shorter than the gap to the nearest is answered without walking the grid (Sweep::clearOf).
 struct NearTiles {
-  double skin = 0;             ///< m, set by the caller
-  double reach = 0;            ///< m, looked this far from `centre` along each axis
+  struct Tile {
+    Box box;
+    Index3 index;
+  };
+  double skin = 0;             ///< m, set by the caller for each query
+  double slack = 0;            ///< m, set by the caller: gathered this much beyond the need
+  double reach = -1;           ///< m, gathered this far from `centre` along each axis (< 0: none)
   Vec3 centre = Vec3::Zero();  ///< grid frame
-  std::vector<Index3> tiles;   ///< solid, in contact or not
+  std::vector<Tile> tiles;     ///< solid, in contact or not
+  std::uint64_t gathers = 0;   ///< how often they were gathered from the grid
 };
 
 /// Every tile within radius + margin of the marble's centre, one contact per surface direction
 /// (a floor of many tiles gives one contact). A tile adds no contact through a face it shares
 /// with a solid neighbour: there the neighbour's own face is the surface, so seams never act as
-/// edges. The cost depends on the marble's size, not on the maze's. With `near`, it also
-/// gathers the tiles within near->skin beyond that reach.
+/// edges. The cost depends on the marble's size, not on the maze's. With `near`, the tiles are
+/// taken from it, gathered anew when they do not reach near->skin beyond the contacts' reach.
 void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, double radius,
                   double margin, std::vector<Contact>* contacts, NearTiles* near = nullptr);
 
@@ -97,7 +107,7 @@ struct Sweep {
   /// the near tiles were gathered, and each of them lies behind a plane it keeps to (as the walk
   /// judges it) or farther from its start than the radius plus how far it strays (|path| +
   /// |bend|). False says nothing.
-  bool clearOf(const Maze& maze, const NearTiles& near) const;
+  bool clearOf(const NearTiles& near) const;
 };
 
 /// The first impact along a sweep.

@@ -42,12 +42,14 @@ struct SimulationState {
 };
 
 /// What the steps have cost, counted rather than timed (a machine's speed cannot move a count):
-/// the substeps taken, the swept tests run and the solid tiles those looked at.
+/// the substeps taken, the swept tests run and the solid tiles those looked at, and how often the
+/// tiles near the marble were gathered from the grid.
 struct StepCounts {
   std::uint64_t substeps = 0;
   std::uint64_t sweeps = 0;
   std::uint64_t tiles_swept = 0;
   std::uint64_t sweeps_clear = 0;  ///< sweeps answered by the near tiles, without a walk
+  std::uint64_t gathers = 0;       ///< times the near tiles were gathered anew from the grid
 };
 
 /// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical

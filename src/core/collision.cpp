@@ -10,6 +10,8 @@ namespace marble_maze {
 namespace {
 
 constexpr double kNone = std::numeric_limits<double>::infinity();
+// Far above the rounding of a grid coordinate (some 1e-16 m), far below anything physical.
+constexpr double kRoundingRoom = 1e-9;  // m
 
 /// The tiles that a grid-frame box [lower, upper] can touch, clamped to the grid (seed step 2).
 struct TileRange {
@@ -174,7 +176,7 @@ bool behindAPlane(const Sweep& w, const Box& box) {
 /// (which moves a tile's bounds and the path's extremes by some 1e-16 m). No tile farther than
 /// this can be met.
 double farthestReach(const Sweep& w) {
-  return w.radius + w.path.norm() + w.bend.norm() + 1e-9;
+  return w.radius + w.path.norm() + w.bend.norm() + kRoundingRoom;
 }
 
 /// Narrows a range of tiles to those in front of the planes the path keeps to that face along a
@@ -383,39 +385,53 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   contacts->clear();
   const Vec3 c = frame.toGrid(centre);  // step 1: eq. (4)
   const double reach = radius + margin;
-  const Vec3 extent = Vec3::Constant(reach + (near ? near->skin : 0));
-  if (near) {
-    near->reach = extent.x();
-    near->centre = c;
-    near->tiles.clear();
-  }
-  if (!overlapsGrid(maze, c - extent, c + extent)) return;
+  // The contact test below takes only tiles within `reach`; the tiles looked at reach a little
+  // farther, so that those a rounding error either side of it are looked at, gathered here or
+  // kept from an earlier query alike, and the contacts do not depend on which.
+  const double looked = reach + kRoundingRoom + (near ? near->skin : 0);
+  const auto contactWith = [&](const Index3& t, const Box& box) {
+    Vec3 q = closestPoint(box, c);  // step 4: the box's nearest point to the centre
+    const Vec3 offset = c - q;
+    const double distance2 = offset.squaredNorm();
+    if (distance2 >= reach * reach) return;  // step 5: no contact beyond the radius
+    if (!facesOpen(maze, t, box, c)) return;
+    Contact contact;
+    if (distance2 > 0) {
+      const double distance = std::sqrt(distance2);
+      contact.normal = offset / distance;
+      contact.depth = radius - distance;
+    } else {
+      double inside;  // the centre is in the tile: leave through its nearest open face
+      if (!nearestOpenFace(maze, t, box, c, &contact.normal, &inside)) return;
+      q = c + contact.normal * inside;
+      contact.depth = radius + inside;
+    }
+    contact.point = q;
+    contact.tile = t;
+    addContact(contacts, contact);
+  };
   // Steps 2 and 3: the index range of the marble's extent, and the tiles that exist in it. The
   // contacts are gathered in the grid frame (normal, nearest point) and taken into the world
   // once each, after coplanar tiles have been merged.
-  forEachSolidTile(
-      maze, tileRange(maze, c - extent, c + extent), [&](const Index3& t, const Box& box) {
-        if (near) near->tiles.push_back(t);
-        Vec3 q = closestPoint(box, c);  // step 4: the box's nearest point to the centre
-        const Vec3 offset = c - q;
-        const double distance2 = offset.squaredNorm();
-        if (distance2 >= reach * reach) return;  // step 5: no contact beyond the radius
-        if (!facesOpen(maze, t, box, c)) return;
-        Contact contact;
-        if (distance2 > 0) {
-          const double distance = std::sqrt(distance2);
-          contact.normal = offset / distance;
-          contact.depth = radius - distance;
-        } else {
-          double inside;  // the centre is in the tile: leave through its nearest open face
-          if (!nearestOpenFace(maze, t, box, c, &contact.normal, &inside)) return;
-          q = c + contact.normal * inside;
-          contact.depth = radius + inside;
-        }
-        contact.point = q;
-        contact.tile = t;
-        addContact(contacts, contact);
-      });
+  if (!near) {
+    const Vec3 extent = Vec3::Constant(looked);
+    if (overlapsGrid(maze, c - extent, c + extent))
+      forEachSolidTile(maze, tileRange(maze, c - extent, c + extent), contactWith);
+  } else {
+    if (!((c - near->centre).cwiseAbs().maxCoeff() + looked <= near->reach)) {
+      const Vec3 extent = Vec3::Constant(looked + near->slack);
+      near->reach = extent.x();
+      near->centre = c;
+      near->tiles.clear();
+      ++near->gathers;
+      if (overlapsGrid(maze, c - extent, c + extent))
+        forEachSolidTile(maze, tileRange(maze, c - extent, c + extent),
+                         [&](const Index3& t, const Box& box) {
+                           near->tiles.push_back({box, t});
+                         });
+    }
+    for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
+  }
   for (Contact& contact : *contacts) {
     contact.normal = frame.rotation * contact.normal;
     contact.point = frame.toWorld(contact.point);
@@ -427,16 +443,15 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   }
 }
 
-bool Sweep::clearOf(const Maze& maze, const NearTiles& near) const {
+bool Sweep::clearOf(const NearTiles& near) const {
   const double farthest = farthestReach(*this);
   // A tile the near ones leave out lies beyond `near.reach` from where they were gathered
   // along some axis.
   const double moved = (from - near.centre).cwiseAbs().maxCoeff();
   if (!(moved + farthest < near.reach)) return false;
-  for (const Index3& t : near.tiles) {
-    const Box box = maze.tileBox(t);
-    if (!behindAPlane(*this, box) &&
-        (from - closestPoint(box, from)).squaredNorm() <= farthest * farthest)
+  for (const NearTiles::Tile& tile : near.tiles) {
+    if (!behindAPlane(*this, tile.box) &&
+        (from - closestPoint(tile.box, from)).squaredNorm() <= farthest * farthest)
       return false;
   }
   return true;

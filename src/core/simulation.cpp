@@ -18,6 +18,10 @@ constexpr int kMaxImpactsPerSubstep = 4;
 // velocity it stopped); faster, and faster than the surface under it changes its normal velocity
 // over the stretch, it is leaving, and may come back within the step.
 constexpr double kRestingSpeed = 1e-5;  // m/s
+// The tiles near the marble are gathered this many radii farther than a substep needs, and kept
+// until it has moved that far: at play speeds (up to about 1 m/s) that lasts several substeps,
+// and the box they are gathered from grows by few tiles.
+constexpr double kNearSlack = 0.5;
 // The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
 constexpr double kMostTurn = 0.05;
 
@@ -225,8 +229,10 @@ void Simulation::substep(double h, double start_time) {
   const double goes = (marble_.velocity - moving.surfaceVelocity(marble_.position)).norm() * h +
                       params_.gravity * h * h;
   near_.skin = std::min(params_.marble_radius, 2 * goes);
+  near_.slack = kNearSlack * params_.marble_radius;
   findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin, &contacts_,
                &near_);
+  counts_.gathers = near_.gathers;
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
   // A contact struck at the start (a board kicking the marble) is an impulse before the
@@ -391,7 +397,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
     // impact the marble touches the tile it met and keeps to no plane: the near tiles could not
     // clear its path.)
     SweepHit hit;
-    const bool clear = impacts == 0 && sweep.clearOf(maze_, near_);
+    const bool clear = impacts == 0 && sweep.clearOf(near_);
     const bool hits = !clear && timeOfImpact(maze_, frame_, sweep, &hit);
     ++counts_.sweeps;
     counts_.sweeps_clear += clear;

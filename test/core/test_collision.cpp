@@ -171,6 +171,52 @@ TEST(SphereBoxImpact, FaceEdgeAndCornerTimesMatchHandWorkedValues) {
   EXPECT_FALSE(sphereBoxImpact({-0.02, -0.004, -0.004}, {0.04, 0, 0}, 0.005, box, &t, &q));
 }
 
+TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
+  // A marble wandering over a generated maze in steps of up to 2 mm, near the floor and the
+  // walls and sometimes into them, on a tilted board: the contacts found with the near tiles kept
+  // from earlier queries (gathered anew only now and then) are those of a query that looks at the
+  // grid afresh, bit for bit, and the kept tiles hold every solid tile the query needs.
+  const Maze maze = test::generatedMaze(10);
+  const double r = 0.006, margin = 1e-7;
+  GridFrame frame;
+  frame.rotation = Eigen::AngleAxisd(0.1, Vec3(1, 2, 0).normalized()).toRotationMatrix();
+  frame.grid_pivot = maze.pivot();
+  frame.angular_velocity = Vec3(0.3, -0.2, 0);
+  std::mt19937 random(11);
+  const auto uniform = [&](double lo, double hi) {
+    return lo + (hi - lo) * std::generate_canonical<double, 53>(random);
+  };
+  NearTiles kept;
+  kept.slack = 0.5 * r;
+  Vec3 grid(maze.axis(0).centre(1), maze.axis(1).centre(1), maze.floorTop() + r);
+  int contacts_seen = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const Vec3 move(uniform(-2e-3, 2e-3), uniform(-2e-3, 2e-3), uniform(-1e-3, 1e-3));
+    grid = (grid + move).cwiseMax(Vec3(0, 0, maze.floorTop() + 0.5 * r));
+    grid = grid.cwiseMin(Vec3(maze.extent().x(), maze.extent().y(), maze.floorTop() + 2 * r));
+    if (n % 3 == 0) grid.z() = maze.floorTop() + r;  // resting on the floor, exactly
+    const Vec3 centre = frame.toWorld(grid);
+    kept.skin = uniform(0, r);
+    std::vector<Contact> with_kept, fresh;
+    findContacts(maze, frame, centre, r, margin, &with_kept, &kept);
+    findContacts(maze, frame, centre, r, margin, &fresh);
+    ASSERT_EQ(with_kept.size(), fresh.size()) << "at " << grid.transpose();
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+      EXPECT_EQ(with_kept[i].normal, fresh[i].normal);
+      EXPECT_EQ(with_kept[i].point, fresh[i].point);
+      EXPECT_EQ(with_kept[i].surface_velocity, fresh[i].surface_velocity);
+      EXPECT_EQ(with_kept[i].depth, fresh[i].depth);
+      EXPECT_EQ(with_kept[i].tile, fresh[i].tile);
+    }
+    contacts_seen += static_cast<int>(fresh.size());
+    // Every solid tile within the skin beyond the contacts' reach is among the kept ones.
+    const Vec3 c = frame.toGrid(centre);
+    EXPECT_LE((c - kept.centre).cwiseAbs().maxCoeff() + r + margin + kept.skin, kept.reach);
+  }
+  EXPECT_GT(contacts_seen, 10000);
+  EXPECT_LT(kept.gathers, 15000u);  // kept for some queries: 0 would test nothing
+}
+
 TEST(SweepSphere, AFastMarbleNeverPassesAThinWall) {
   Maze maze(AxisSlots(0.005, 0.02, 11), AxisSlots(0.005, 0.02, 5), AxisSlots::uniform(0.01, 1));
   maze.setSolid({6, 2, 0}, true);  // a 5 mm thin slot, x from 0.075 to 0.08
@@ -271,7 +317,7 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
     SweepHit hit;
     const bool meets = timeOfImpact(maze, frame, sweep, &hit);
     hits += meets;
-    if (!sweep.clearOf(maze, near)) continue;
+    if (!sweep.clearOf(near)) continue;
     ++clear;
     EXPECT_FALSE(meets) << "from " << sweep.from.transpose() << " path " << sweep.path.transpose()
                         << " skin " << near.skin;

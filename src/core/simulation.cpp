@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "marble_maze/rotation.h"
+
 namespace marble_maze {
 namespace {
 
@@ -239,13 +241,8 @@ void Simulation::substep(double h, double start_time) {
   // substep's forces act, so that the flight after it keeps the whole substep's gravity.
   if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
   advance(h, start_time, start);
-  if (params_.model == Model::Rolling) {
-    const double spin = marble_.angular_velocity.norm();
-    if (spin * h > 0)
-      marble_.orientation =
-          (Quat(Eigen::AngleAxisd(spin * h, marble_.angular_velocity / spin)) * marble_.orientation)
-              .normalized();
-  }
+  if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
+    marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
   checkFinish(start_time + h);
 }
 

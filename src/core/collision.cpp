@@ -161,14 +161,17 @@ bool segmentMeetsBox(const Vec3& o, const Vec3& d, const Box& box, double grow,
 /// Whether the box lies wholly behind one of the planes the path keeps to. A box that reaches
 /// less than the contact margin in front of one counts as behind it: the marble could at most
 /// touch it by that much, a contact the next substep finds.
+/// (Without branches: which tiles are behind changes from one substep to the next, and a branch
+/// that guesses wrong costs more than the arithmetic.)
 bool behindAPlane(const Sweep& w, const Box& box) {
+  bool behind = false;
   for (int k = 0; k < w.planes; ++k) {
     const Vec3& n = w.plane_normal[k];
     double front = 0;  // the box's farthest reach along n
-    for (int a = 0; a < 3; ++a) front += n[a] * (n[a] > 0 ? box.upper[a] : box.lower[a]);
-    if (front <= w.plane_offset[k] + w.margin) return true;
+    for (int a = 0; a < 3; ++a) front += std::max(n[a] * box.lower[a], n[a] * box.upper[a]);
+    behind |= front <= w.plane_offset[k] + w.margin;
   }
-  return false;
+  return behind;
 }
 
 /// How far from its start the marble of a sweep can reach a tile: its radius plus how far the
@@ -449,12 +452,11 @@ bool Sweep::clearOf(const NearTiles& near) const {
   // along some axis.
   const double moved = (from - near.centre).cwiseAbs().maxCoeff();
   if (!(moved + farthest < near.reach)) return false;
-  for (const NearTiles::Tile& tile : near.tiles) {
-    if (!behindAPlane(*this, tile.box) &&
-        (from - closestPoint(tile.box, from)).squaredNorm() <= farthest * farthest)
-      return false;
-  }
-  return true;
+  bool clear = true;  // tile by tile without branches (see behindAPlane)
+  for (const NearTiles::Tile& tile : near.tiles)
+    clear &= behindAPlane(*this, tile.box) |
+             ((from - closestPoint(tile.box, from)).squaredNorm() > farthest * farthest);
+  return clear;
 }
 
 bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {

@@ -79,6 +79,13 @@ bool nearestOpenFace(const Maze& maze, const Index3& t, const Box& box, const Ve
   return *distance < kNone;
 }
 
+/// The one axis along which an offset from a box is not zero (the centre lies off a face), or -1.
+int faceAxis(const Vec3& offset) {
+  const int zeros = (offset.x() == 0) + (offset.y() == 0) + (offset.z() == 0);
+  if (zeros != 2) return -1;
+  return offset.x() != 0 ? 0 : offset.y() != 0 ? 1 : 2;
+}
+
 /// Keeps one contact per normal: coplanar tiles on either side of a seam give the same one.
 void addContact(std::vector<Contact>* contacts, const Contact& c) {
   for (Contact& existing : *contacts)
@@ -399,7 +406,15 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
     if (distance2 >= reach * reach) return;  // step 5: no contact beyond the radius
     if (!facesOpen(maze, t, box, c)) return;
     Contact contact;
-    if (distance2 > 0) {
+    const int along = faceAxis(offset);
+    if (along >= 0 && distance2 >= std::numeric_limits<double>::min()) {
+      // Off a face: the normal is the face's, and the distance the one coordinate, which is
+      // what the square root and the quotient below give to the bit (sqrt(x^2) = |x| when x^2
+      // neither underflows nor overflows), without their wait.
+      contact.normal = Vec3::Zero();
+      contact.normal[along] = offset[along] > 0 ? 1 : -1;
+      contact.depth = radius - std::abs(offset[along]);
+    } else if (distance2 > 0) {
       const double distance = std::sqrt(distance2);
       contact.normal = offset / distance;
       contact.depth = radius - distance;

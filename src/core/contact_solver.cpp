@@ -14,6 +14,14 @@ constexpr int kMaxIterations = 8;
 // A velocity change below this (m/s) is rounding: the sweeps have converged.
 constexpr double kConverged = 1e-12;
 
+/// n copies of `value` in v, reusing its storage: assign() without its out-of-line call, which
+/// costs more than the copies (this runs several times a step).
+template <typename T>
+void fill(std::vector<T>* v, std::size_t n, const T& value) {
+  v->resize(n);
+  std::fill(v->begin(), v->end(), value);
+}
+
 /// Kinetic energy relative to the mean velocity of the touched surfaces.
 double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity,
                       const MarbleBody& body) {
@@ -34,7 +42,7 @@ bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& 
 
 void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* body,
                            std::vector<ContactOutcome>* outcomes) {
-  outcomes->assign(contacts.size(), ContactOutcome());
+  fill(outcomes, contacts.size(), ContactOutcome());
   surface_work_ = 0;
   if (contacts.empty()) return;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
@@ -58,7 +66,7 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* bod
 
 void ContactSolver::constrain(const std::vector<Contact>& contacts, MarbleBody* body,
                               std::vector<ContactOutcome>* outcomes) {
-  outcomes->assign(contacts.size(), ContactOutcome());
+  fill(outcomes, contacts.size(), ContactOutcome());
   surface_work_ = 0;
   if (contacts.empty()) return;
   // Rolling resistance first, so that friction turns its torque into the marble's slowing in the
@@ -80,7 +88,7 @@ void ContactSolver::measureWork(const std::vector<Contact>& contacts,
 void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restitution,
                             MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
   const bool rolling = params_.model == Model::Rolling && params_.friction > 0;
-  friction_impulses_.assign(contacts.size(), Vec3::Zero());
+  fill(&friction_impulses_, contacts.size(), Vec3(Vec3::Zero()));
   for (auto& o : *outcomes) o.normal_impulse = 0;
   if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
   if (rolling && contacts.size() == 3 && solveTriple(contacts, restitution, body, outcomes)) return;

@@ -297,15 +297,18 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
   acting_.clear();
   for (const Contact& c : contacts_) {
     const Vec3 relative = marble_.velocity - c.surface_velocity;
-    // How much the normal velocity of the surface under the marble changes over the stretch:
-    // the marble crosses to other points of a turning board, |w| |v| h, and the board's turn
-    // changed speed since the marble last moved with it, |w - w_before| |p|. A departure slower
-    // than that is the lag of a contact held at the stretch's start point and the board's last
-    // motion: the contact acts, bringing the marble to the board's motion or letting it go.
+    // How much the marble's normal velocity relative to the surface under it changes over the
+    // stretch while it moves with the board: it crosses to other points of the turning board,
+    // |w| |v| h; the surface's normal turns under its relative velocity, |w| |v_rel| h, and its
+    // point is carried round, |w|^2 |p| h; and the board's turn changed speed since the marble
+    // last moved with it, |w - w_before| |p|. A departure slower than that is the lag of a
+    // contact held at the stretch's start point and the board's last motion: the contact acts,
+    // bringing the marble to the board's motion or letting it go.
     const double away = relative.dot(c.normal);
     const auto drift = [&] {
-      return frame_.angular_velocity.norm() * relative.norm() * duration +
-             (frame_.angular_velocity - previous_spin).norm() * c.point.norm();
+      const double w = frame_.angular_velocity.norm(), p = c.point.norm();
+      return w * (marble_.velocity.norm() + relative.norm() + w * p) * duration +
+             (frame_.angular_velocity - previous_spin).norm() * p;
     };
     const bool leaving =
         integrator_->bends() && away > kRestingSpeed && away > kRestingSpeed + drift();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "marble_maze/rotation.h"
+
 namespace marble_maze {
 
 Board::Board(const Params& params) {
@@ -23,8 +25,9 @@ void Board::setLimits(const Params& params) {
 
 Mat3 Board::rotationFor(double roll, double pitch) {
   // Ry(pitch) * Rx(roll), multiplied out.
-  const double cr = std::cos(roll), sr = std::sin(roll);
-  const double cp = std::cos(pitch), sp = std::sin(pitch);
+  const CosSinc cs_r = cosSinc(roll * roll), cs_p = cosSinc(pitch * pitch);
+  const double cr = cs_r.cos, sr = roll * cs_r.sinc;
+  const double cp = cs_p.cos, sp = pitch * cs_p.sinc;
   Mat3 r;
   r << cp, sp * sr, sp * cr,  //
       0, cr, -sr,             //
@@ -107,13 +110,12 @@ void Board::advance(double h, double most_turn) {
   const Mat3 new_rotation = rotationFor(new_roll, new_pitch);
   // The angular velocity over the step, in rad/s so that the surface velocity w x (p - pivot)
   // is in m/s: for R = Ry(pitch) Rx(roll), w = pitch' e_y + roll' Ry(pitch) e_x, taken at
-  // mid-step. (cos, sin) of the mid-step pitch is the normalised sum of those at either end,
-  // which the rotations hold: R(0, 0) = cos(pitch), R(2, 0) = -sin(pitch).
-  const double roll_rate = (new_roll - roll_) / h, pitch_rate = (new_pitch - pitch_) / h;
-  const Eigen::Vector2d mid =
-      Eigen::Vector2d(rotation_(0, 0) + new_rotation(0, 0), -rotation_(2, 0) - new_rotation(2, 0))
-          .normalized();
-  angular_velocity_ = Vec3(roll_rate * mid.x(), pitch_rate, -roll_rate * mid.y());
+  // mid-step.
+  const double per_h = 1 / h;
+  const double roll_rate = (new_roll - roll_) * per_h, pitch_rate = (new_pitch - pitch_) * per_h;
+  const double mid_pitch = 0.5 * (pitch_ + new_pitch);
+  const CosSinc mid = cosSinc(mid_pitch * mid_pitch);
+  angular_velocity_ = Vec3(roll_rate * mid.cos, pitch_rate, -roll_rate * mid_pitch * mid.sinc);
   roll_ = new_roll;
   pitch_ = new_pitch;
   rotation_ = new_rotation;

@@ -2,10 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "marble_maze/rotation.h"
 
 namespace marble_maze {
+namespace {
+
+constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+
+}  // namespace
 
 Board::Board(const Params& params) {
   setLimits(params);
@@ -94,9 +100,12 @@ void Board::advance(double h, double most_turn) {
       approach_step_ = h;
       approach_ = response_time_ > 0 ? 1.0 - std::exp(-h / response_time_) : 1.0;
     }
+    // (The rate limit bounds the step's turn: no quotient by h and product back, which the
+    // next step's angle would wait on.)
+    const double most = tilt_rate_limit_ > 0 ? tilt_rate_limit_ * h : kNoLimit;
     const auto follow = [&](double angle, double target) {
       if (std::abs(target - angle) < 1e-12) return target;
-      return angle + clampRate((target - angle) * approach_ / h) * h;
+      return angle + std::clamp((target - angle) * approach_, -most, most);
     };
     new_roll = follow(roll_, target_roll_);
     new_pitch = follow(pitch_, target_pitch_);

@@ -58,6 +58,10 @@ struct Trajectory {
   Vec3 velocity = Vec3::Zero();
   Vec3 velocity_change = Vec3::Zero();
   Vec3 start_spin = Vec3::Zero();
+  /// m/s, how fast the centre moves at the start and the end: first / duration and
+  /// (first + 2 second) / duration, as the scheme knows them rather than divided out again.
+  Vec3 start_rate = Vec3::Zero();
+  Vec3 end_rate = Vec3::Zero();
   Velocities end;      ///< the state's velocities after the stretch
   bool curved = true;  ///< impacts are looked for on the curve; false: on the chord (second = 0)
 

@@ -7,13 +7,16 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// The curve through the stretch with the start's velocity and the end's displacement; the
-/// velocity along it changes linearly from the start's to the end's.
+/// The curve through the stretch with the start's velocity and the end's displacement, whose
+/// rate at the end is `end_rate`; the velocity along it changes linearly from the start's to the
+/// end's.
 Trajectory curve(const Velocities& start, const Velocities& end, const Vec3& displacement,
-                 double duration) {
+                 const Vec3& end_rate, double duration) {
   Trajectory t;
   t.first = start.linear * duration;
   t.second = displacement - t.first;
+  t.start_rate = start.linear;
+  t.end_rate = end_rate;
   t.velocity = start.linear;
   t.velocity_change = end.linear - start.linear;
   t.start_spin = start.angular;
@@ -46,7 +49,8 @@ class SemiImplicitEuler : public Integrator {
     // the chord's displacement, and the state's velocity at the end, again half a substep back.
     const double lag = stretch.from_impact ? 0 : 0.5 * stretch.substep;
     t.velocity = start.linear + (lag / h) * t.velocity_change;
-    t.first = (t.velocity + 0.5 * t.velocity_change) * h;
+    t.start_rate = t.end_rate = t.velocity + 0.5 * t.velocity_change;  // the chord's
+    t.first = t.start_rate * h;
     t.end.linear = t.velocity + (1 - 0.5 * stretch.substep / h) * t.velocity_change;
     return t;
   }
@@ -67,7 +71,8 @@ class VelocityVerlet : public Integrator {
       const Velocities again = dynamics.after(end, h);
       end = plus(start, plus(minus(end, start), minus(again, end), 1), 0.5);
     }
-    return curve(start, end, 0.5 * (start.linear + end.linear) * h, h);
+    // The displacement (v0 + v1) h / 2 from a start at v0 ends at v1.
+    return curve(start, end, 0.5 * (start.linear + end.linear) * h, end.linear, h);
   }
 };
 
@@ -93,7 +98,7 @@ class RungeKutta4 : public Integrator {
     for (const auto& [k, w] : {std::pair{k1, 1.0}, {k2, 2.0}, {k3, 2.0}, {k4, 1.0}})
       end = plus(end, k, w / 6);
     const Vec3 displacement = (v1.linear + 2 * v2.linear + 2 * v3.linear + v4.linear) * (h / 6);
-    return curve(start, end, displacement, h);
+    return curve(start, end, displacement, displacement * (2 / h) - start.linear, h);
   }
 };
 

@@ -319,29 +319,27 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
 void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
   // The path may not run into a tile the marble touches, whatever the velocities it was built
   // from said: it would end inside the tile. Its rate is linear in s, so a path that leaves
-  // neither at its start nor at its end is clear of the tile all along. (The rates are divided
-  // out once, then moved with the path: divisions cost.)
-  Vec3 start_rate = path->first / duration;
-  Vec3 end_rate = path->curved ? Vec3((path->first + 2 * path->second) / duration) : start_rate;
+  // neither at its start nor at its end is clear of the tile all along.
   for (const Contact& c : acting_) {
     const Vec3& n = c.normal;
-    const double start_into = (start_rate - c.surface_velocity).dot(n);
+    const double start_into = (path->start_rate - c.surface_velocity).dot(n);
     if (start_into < 0) {
       path->first -= start_into * duration * n;
       path->velocity -= start_into * n;
-      start_rate -= start_into * n;
+      path->start_rate -= start_into * n;
       if (!path->curved) {  // the chord: its one rate is the end's too
         path->end.linear -= start_into * n;
+        path->end_rate = path->start_rate;
         continue;
       }
       path->second += 0.5 * start_into * duration * n;  // the end's rate stays
     }
     if (!path->curved) continue;
-    const double end_into = (end_rate - c.surface_velocity).dot(n);
+    const double end_into = (path->end_rate - c.surface_velocity).dot(n);
     if (end_into < 0) {
       path->second -= 0.5 * end_into * duration * n;
       path->end.linear -= end_into * n;
-      end_rate -= end_into * n;
+      path->end_rate -= end_into * n;
     }
   }
   if (path->curved) path->velocity_change = path->end.linear - path->velocity;

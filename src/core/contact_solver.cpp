@@ -97,6 +97,10 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   const double r = body->radius;
   // Effective mass of a sphere for a tangential impulse at its surface.
   const double tangent_mass = 1.0 / (inv_mass + r * r * inv_inertia);
+  // The velocities are worked on in locals, not through `body`: stores and loads of them in
+  // memory, in pieces that do not match, would make each sweep wait.
+  Vec3 velocity = body->velocity, spin = body->angular_velocity;
+  const double mass = body->mass;
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
     double largest_change2 = 0;  // the square of any impulse's change in this sweep, (N s)^2
@@ -105,16 +109,16 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
       ContactOutcome& o = (*outcomes)[i];
       // Eq. (1): the normal part of the velocity relative to the board's surface leaves at
       // e times its approach speed; resting contacts leave at zero.
-      const double impulse = std::max(
-          0.0, o.normal_impulse + normalNeed(c, o, restitution, body->velocity) * body->mass);
+      const double impulse =
+          std::max(0.0, o.normal_impulse + normalNeed(c, o, restitution, velocity) * mass);
       const double normal_change = impulse - o.normal_impulse;
-      body->velocity += normal_change * inv_mass * c.normal;
+      velocity += normal_change * inv_mass * c.normal;
       largest_change2 = std::max(largest_change2, normal_change * normal_change);
       o.normal_impulse = impulse;
       if (!rolling) continue;
       // Coulomb friction at the contact point: stop slipping, within mu times the normal impulse.
       const Vec3 arm = -r * c.normal;
-      const Vec3 slip = body->velocity + body->angular_velocity.cross(arm) - c.surface_velocity;
+      const Vec3 slip = velocity + spin.cross(arm) - c.surface_velocity;
       const Vec3 tangential_slip = slip - slip.dot(c.normal) * c.normal;
       Vec3 total = friction_impulses_[i] - tangential_slip * tangent_mass;
       const double limit = params_.friction * impulse;
@@ -122,13 +126,15 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
       if (size2 > limit * limit) total *= limit / std::sqrt(size2);
       const Vec3 change = total - friction_impulses_[i];
       friction_impulses_[i] = total;
-      body->velocity += change * inv_mass;
-      body->angular_velocity += arm.cross(change) * inv_inertia;
+      velocity += change * inv_mass;
+      spin += arm.cross(change) * inv_inertia;
       largest_change2 = std::max(largest_change2, change.squaredNorm());
     }
     // Converged: a further sweep would change no velocity by more than 1e-12 m/s.
     if (largest_change2 * inv_mass * inv_mass < kConverged * kConverged) break;
   }
+  body->velocity = velocity;
+  body->angular_velocity = spin;
 }
 
 void ContactSolver::resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const {

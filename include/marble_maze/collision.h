@@ -64,7 +64,10 @@ struct NearTiles {
   double reach = -1;           ///< m, gathered this far from `centre` along each axis (< 0: none)
   Vec3 centre = Vec3::Zero();  ///< grid frame
   std::vector<Tile> tiles;     ///< solid, in contact or not
-  std::uint64_t gathers = 0;   ///< how often they were gathered from the grid
+  /// Where each layer of them (a z slot of the grid) begins in `tiles`, bottom up: they are
+  /// gathered in the grid's order, layer by layer.
+  std::vector<std::size_t> layers;
+  std::uint64_t gathers = 0;  ///< how often they were gathered from the grid
 };
 
 /// Every tile within radius + margin of the marble's centre, one contact per surface direction

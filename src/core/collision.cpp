@@ -189,16 +189,20 @@ double farthestReach(const Sweep& w) {
   return w.radius + w.path.norm() + w.bend.norm() + kRoundingRoom;
 }
 
+/// Whether a unit normal lies along grid axis a, either way. (Off-axis parts below 1e-12 move a
+/// tile's reach across its plane by far less than the contact margin.)
+bool alongAxis(const Vec3& n, int a) {
+  return std::abs(n[a]) >= 1 - 1e-12 && std::abs(n[(a + 1) % 3]) <= 1e-12 &&
+         std::abs(n[(a + 2) % 3]) <= 1e-12;
+}
+
 /// Narrows a range of tiles to those in front of the planes the path keeps to that face along a
 /// grid axis (a floor, a wall): the tiles behind such a plane are not even looked up.
 void narrowToPlanes(const Maze& maze, const Sweep& w, TileRange* range) {
   for (int k = 0; k < w.planes; ++k) {
     const Vec3& n = w.plane_normal[k];
     for (int a = 0; a < 3; ++a) {
-      const int b = (a + 1) % 3, d = (a + 2) % 3;
-      if (!(std::abs(n[a]) >= 1 - 1e-12 && std::abs(n[b]) <= 1e-12 && std::abs(n[d]) <= 1e-12))
-        continue;
-      // Off-axis parts below 1e-12 move a tile's reach by far less than the margin.
+      if (!alongAxis(n, a)) continue;
       const double plane = w.plane_offset[k] / n[a];
       if (n[a] > 0)
         range->first[a] = std::max(range->first[a], maze.axis(a).slotAt(plane + w.margin));
@@ -441,10 +445,13 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       near->reach = extent.x();
       near->centre = c;
       near->tiles.clear();
+      near->layers.clear();
       ++near->gathers;
       if (overlapsGrid(maze, c - extent, c + extent))
         forEachSolidTile(maze, tileRange(maze, c - extent, c + extent),
                          [&](const Index3& t, const Box& box) {
+                           if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
+                             near->layers.push_back(near->tiles.size());
                            near->tiles.push_back({box, t});
                          });
     }
@@ -467,10 +474,23 @@ bool Sweep::clearOf(const NearTiles& near) const {
   // along some axis.
   const double moved = (from - near.centre).cwiseAbs().maxCoeff();
   if (!(moved + farthest < near.reach)) return false;
+  // The layers wholly behind a floor the path keeps to are passed over at once, as the walk
+  // passes over them (narrowToPlanes): a marble rolling on the floor has most near tiles there.
+  double floor = -kNone;
+  for (int k = 0; k < planes; ++k)
+    if (alongAxis(plane_normal[k], 2) && plane_normal[k].z() > 0)
+      floor = std::max(floor, plane_offset[k] / plane_normal[k].z() + margin);
+  std::size_t first = 0;
+  for (std::size_t i = 0; i < near.layers.size(); ++i) {
+    if (!(near.tiles[near.layers[i]].box.upper.z() <= floor)) break;
+    first = i + 1 < near.layers.size() ? near.layers[i + 1] : near.tiles.size();
+  }
   bool clear = true;  // tile by tile without branches (see behindAPlane)
-  for (const NearTiles::Tile& tile : near.tiles)
-    clear &= behindAPlane(*this, tile.box) |
-             ((from - closestPoint(tile.box, from)).squaredNorm() > farthest * farthest);
+  for (std::size_t i = first; i < near.tiles.size(); ++i) {
+    const Box& box = near.tiles[i].box;
+    clear &= behindAPlane(*this, box) |
+             ((from - closestPoint(box, from)).squaredNorm() > farthest * farthest);
+  }
   return clear;
 }
 

@@ -131,7 +131,7 @@ class Simulation {
 
   void substep(double h, double start_time);
   void pushOut();
-  void advance(double h, double start_time, const GridFrame& start);
+  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin);
   void chooseActingContacts(double duration, const Vec3& previous_spin);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const;

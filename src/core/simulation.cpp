@@ -215,7 +215,10 @@ void Simulation::step() {
 
 void Simulation::substep(double h, double start_time) {
   ++counts_.substeps;
-  const GridFrame start = frame_;  // the board's pose at the start of the substep
+  // The board's pose at the start of the substep, moving as it moves over the substep (its
+  // motion in the last one kept apart).
+  GridFrame start = frame_;
+  const Vec3 previous_spin = frame_.angular_velocity;
   board_.advance(h, kMostTurn);
   frame_ = gridFrame();
   if (marble_.phase != MarblePhase::Free) {  // a finished marble rides along with the board
@@ -226,16 +229,14 @@ void Simulation::substep(double h, double start_time) {
   // Contacts against the board where it is at the start, moving as it moves over the substep;
   // and the tiles near enough for the substep's path to meet, about twice as far as it goes at
   // the marble's speed relative to the board (at most a radius, which bounds the lookup's cost).
-  GridFrame moving = start;
-  moving.angular_velocity = frame_.angular_velocity;
+  start.angular_velocity = frame_.angular_velocity;
   // (Its speed is bounded by the sum of its components' sizes, which takes no square root: a
   // skin only decides which tiles are looked at, never what the step finds.)
-  const double goes =
-      (marble_.velocity - moving.surfaceVelocity(marble_.position)).lpNorm<1>() * h +
-      params_.gravity * h * h;
+  const double goes = (marble_.velocity - start.surfaceVelocity(marble_.position)).lpNorm<1>() * h +
+                      params_.gravity * h * h;
   near_.skin = std::min(params_.marble_radius, 2 * goes);
   near_.slack = kNearSlack * params_.marble_radius;
-  findContacts(maze_, moving, marble_.position, params_.marble_radius, kContactMargin, &contacts_,
+  findContacts(maze_, start, marble_.position, params_.marble_radius, kContactMargin, &contacts_,
                &near_);
   counts_.gathers = near_.gathers;
   marble_.contacts = static_cast<int>(contacts_.size());
@@ -243,7 +244,7 @@ void Simulation::substep(double h, double start_time) {
   // A contact struck at the start (a board kicking the marble) is an impulse before the
   // substep's forces act, so that the flight after it keeps the whole substep's gravity.
   if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
-  advance(h, start_time, start);
+  advance(h, start_time, start, previous_spin);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
   checkFinish(start_time + h);
@@ -361,7 +362,8 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const 
   }
 }
 
-void Simulation::advance(double h, double start_time, const GridFrame& start) {
+void Simulation::advance(double h, double start_time, const GridFrame& start,
+                         const Vec3& previous_spin) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
   // stretch is swept from where the marble was on the board at the start (the board then in its
@@ -372,7 +374,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start) {
   double done = 0;  // fraction of the substep
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
-    chooseActingContacts(rest, impacts == 0 ? start.angular_velocity : frame_.angular_velocity);
+    chooseActingContacts(rest, impacts == 0 ? previous_spin : frame_.angular_velocity);
     dynamics.beginStretch();
     Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
                                            Stretch{rest, h, impacts > 0});

@@ -33,7 +33,7 @@ struct GridFrame {
   Vec3 toBoard(const Vec3& world) const { return rotation.transpose() * world; }
   Vec3 fromBoard(const Vec3& board) const { return rotation * board; }
   /// Velocity of the board's material point at a world position: w x (p - pivot).
-  Vec3 surfaceVelocity(const Vec3& world) const { return angular_velocity.cross(world); }
+  Vec3 surfaceVelocity(const Vec3& world) const { return cross(angular_velocity, world); }
 };
 
 /// The marble touching one tile.

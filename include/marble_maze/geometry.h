@@ -11,6 +11,16 @@ using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 using Index3 = Eigen::Vector3i;
 
+/// a x b, the same to the bit as Eigen's cross(), with its x and y worked out as one pair: the
+/// step stores cross products and soon reads them back, x and y together, which waits long when
+/// they were stored apart (the processor cannot forward two stores to one load).
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  const Eigen::Vector2d xy =
+      Eigen::Vector2d(a.y(), a.z()).cwiseProduct(Eigen::Vector2d(b.z(), b.x())) -
+      Eigen::Vector2d(a.z(), a.x()).cwiseProduct(Eigen::Vector2d(b.y(), b.z()));
+  return Vec3(xy.x(), xy.y(), a.x() * b.y() - a.y() * b.x());
+}
+
 /// An axis-aligned box, given by its lower and upper corners.
 struct Box {
   Vec3 lower;

@@ -220,7 +220,8 @@ void Simulation::substep(double h, double start_time) {
   GridFrame start = frame_;
   const Vec3 previous_spin = frame_.angular_velocity;
   board_.advance(h, kMostTurn);
-  frame_ = gridFrame();
+  frame_.rotation = board_.rotation();  // the pivot stays where it is in the grid
+  frame_.angular_velocity = board_.angularVelocity();
   if (marble_.phase != MarblePhase::Free) {  // a finished marble rides along with the board
     marble_.position = frame_.toWorld(held_in_grid_);
     marble_.velocity = frame_.surfaceVelocity(marble_.position);

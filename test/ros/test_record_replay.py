@@ -203,8 +203,14 @@ class RecordReplayTest(unittest.TestCase):
             master.stop(node)
         finally:
             master.close()
+        # The board follows the commands as recorded: a command that reaches the node after
+        # /clock has passed its stamp acts one step late, which moves the board by at most its
+        # rate limit times a step (2 mrad), fading as the servo catches up. The marble's play is
+        # chaotic, so such a step can part its path from the recording (identical in most runs,
+        # 0.25 m apart in one of four full `make test` runs): it is reported, not asserted; the
+        # replay node, which has no such race, is held to every bit above.
         original = {m.header.stamp: m for m in states(plain)}
-        worst, compared = 0.0, 0
+        worst, worst_tilt, compared = 0.0, 0.0, 0
         for m in states(out):
             o = original.get(m.header.stamp)
             if o is None:
@@ -212,9 +218,11 @@ class RecordReplayTest(unittest.TestCase):
             compared += 1
             worst = max(worst, math.dist((o.position.x, o.position.y, o.position.z),
                                          (m.position.x, m.position.y, m.position.z)))
-        print("plain rosbag play: %d states compared, %.3g m apart at most" % (compared, worst))
+            worst_tilt = max(worst_tilt, abs(o.roll - m.roll), abs(o.pitch - m.pitch))
+        print("plain rosbag play: %d states compared, the board %.3g rad and the marble %.3g m "
+              "apart at most" % (compared, worst_tilt, worst))
         self.assertGreater(compared, 500)
-        self.assertLess(worst, 0.001)
+        self.assertLess(worst_tilt, 0.005)
 
         # Twice in a loop: time jumps back, the node starts over, tf listeners see no error.
         master = Master()

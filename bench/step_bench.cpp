@@ -47,7 +47,7 @@ void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_
     if (sim->marble().phase != mm::MarblePhase::Free || (restart_every && n % restart_every == 0))
       sim->reset();
   }
-  const mm::StepCounts& after = sim->counts();
+  const mm::StepCounts after = sim->counts();
   const double steps = static_cast<double>(std::max<std::size_t>(n, 1));
   state.counters["substeps"] = static_cast<double>(after.substeps - before.substeps) / steps;
   state.counters["sweeps/step"] = static_cast<double>(after.sweeps - before.sweeps) / steps;

@@ -112,7 +112,11 @@ class Simulation {
   /// The marble's start position in the board frame.
   Vec3 startInBoard() const;
   /// The cost of the steps since the simulation was made (not part of its state).
-  const StepCounts& counts() const { return counts_; }
+  StepCounts counts() const {
+    StepCounts counts = counts_;
+    counts.gathers = near_.gathers;  // counted where the tiles are gathered
+    return counts;
+  }
 
  private:
   /// The marble's dynamics against the contacts of the moment, as the integrators sample them.

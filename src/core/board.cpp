@@ -116,7 +116,6 @@ void Board::advance(double h, double most_turn) {
     angular_velocity_.setZero();
     return;
   }
-  const Mat3 new_rotation = rotationFor(new_roll, new_pitch);
   // The angular velocity over the step, in rad/s so that the surface velocity w x (p - pivot)
   // is in m/s: for R = Ry(pitch) Rx(roll), w = pitch' e_y + roll' Ry(pitch) e_x, taken at
   // mid-step.
@@ -127,7 +126,7 @@ void Board::advance(double h, double most_turn) {
   angular_velocity_ = Vec3(roll_rate * mid.cos, pitch_rate, -roll_rate * mid_pitch * mid.sinc);
   roll_ = new_roll;
   pitch_ = new_pitch;
-  rotation_ = new_rotation;
+  rotation_ = rotationFor(new_roll, new_pitch);
 }
 
 }  // namespace marble_maze

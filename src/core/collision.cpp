@@ -45,6 +45,15 @@ void forEachSolidTile(const Maze& maze, const TileRange& r, Visit visit) {
       }
 }
 
+/// Every solid tile within `reach` of grid point c along each axis, in the grid's order; none
+/// when that cube misses the grid (a marble far above the board).
+template <typename Visit>
+void forEachSolidTileAround(const Maze& maze, const Vec3& c, double reach, Visit visit) {
+  const Vec3 extent = Vec3::Constant(reach);
+  if (overlapsGrid(maze, c - extent, c + extent))
+    forEachSolidTile(maze, tileRange(maze, c - extent, c + extent), visit);
+}
+
 Vec3 closestPoint(const Box& box, const Vec3& p) {
   return p.cwiseMax(box.lower).cwiseMin(box.upper);
 }
@@ -436,24 +445,19 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   // contacts are gathered in the grid frame (normal, nearest point) and taken into the world
   // once each, after coplanar tiles have been merged.
   if (!near) {
-    const Vec3 extent = Vec3::Constant(looked);
-    if (overlapsGrid(maze, c - extent, c + extent))
-      forEachSolidTile(maze, tileRange(maze, c - extent, c + extent), contactWith);
+    forEachSolidTileAround(maze, c, looked, contactWith);
   } else {
     if (!((c - near->centre).cwiseAbs().maxCoeff() + looked <= near->reach)) {
-      const Vec3 extent = Vec3::Constant(looked + near->slack);
-      near->reach = extent.x();
+      near->reach = looked + near->slack;
       near->centre = c;
       near->tiles.clear();
       near->layers.clear();
       ++near->gathers;
-      if (overlapsGrid(maze, c - extent, c + extent))
-        forEachSolidTile(maze, tileRange(maze, c - extent, c + extent),
-                         [&](const Index3& t, const Box& box) {
-                           if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
-                             near->layers.push_back(near->tiles.size());
-                           near->tiles.push_back({box, t});
-                         });
+      forEachSolidTileAround(maze, c, near->reach, [&](const Index3& t, const Box& box) {
+        if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
+          near->layers.push_back(near->tiles.size());
+        near->tiles.push_back({box, t});
+      });
     }
     for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
   }

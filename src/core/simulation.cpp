@@ -239,7 +239,6 @@ void Simulation::substep(double h, double start_time) {
   near_.slack = kNearSlack * params_.marble_radius;
   findContacts(maze_, start, marble_.position, params_.marble_radius, kContactMargin, &contacts_,
                &near_);
-  counts_.gathers = near_.gathers;
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
   // A contact struck at the start (a board kicking the marble) is an impulse before the

@@ -96,17 +96,24 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
     if (!(C > 0 && plain - mu * S > 0)) continue;
     // phi(lambda) = lambda |slip(lambda)| - mu (C + lambda S): convex and increasing from
     // -mu C; Newton from the root with gamma = 0, which lies below it, converges from below.
+    // With q = 1 + lambda gamma and R = sqrt(S^2 q^2 + beta^2) = q |slip|, its step phi / phi' is
+    //   (lambda R^2 q - mu (C + lambda S) R q^2) / (R^2 q - lambda gamma beta^2 - mu S R q^2),
+    // one square root and one division, the only waits on the iteration's path.
     double lambda = mu * C / (plain - mu * S);
+    double last_step = 0;
     bool converged = false;
     for (int iteration = 0; iteration < 20 && !converged; ++iteration) {
-      const double q = 1 + lambda * gamma, along = beta / q;
-      const double size = std::sqrt(S * S + along * along);
-      const double phi = lambda * size - mu * (C + lambda * S);
-      const double slope =
-          size + (size > 0 ? lambda * along * (-beta * gamma / (q * q)) / size : 0) - mu * S;
+      const double q = 1 + lambda * gamma, R2 = S * S * q * q + beta * beta, R = std::sqrt(R2);
+      const double slope = R2 * q - lambda * gamma * beta * beta - mu * S * R * q * q;
       if (!(slope > 0)) break;
-      const double next = lambda - phi / slope;
-      converged = std::abs(next - lambda) <= 1e-15 * next;
+      const double step = (lambda * R2 * q - mu * (C + lambda * S) * R * q * q) / slope;
+      const double next = lambda - step;
+      // Newton's error squares each step (times phi'' / 2 phi', estimated from the last two
+      // steps): done when what it leaves is below rounding, without a further step to see it.
+      converged = std::abs(step) <= 1e-15 * next ||
+                  (std::abs(step) <= 1e-6 * next && last_step != 0 &&
+                   std::abs(step * step * step) <= 1e-17 * next * last_step * last_step);
+      last_step = step;
       lambda = next;
     }
     if (!(converged && lambda > 0)) continue;

@@ -11,13 +11,10 @@
 
 namespace marble_maze {
 
-/// The marble as the solver sees it.
+/// The marble's motion as the solver changes it (its mass, inertia and radius are the params').
 struct MarbleBody {
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();
-  double mass = 1;
-  double inertia = 1;
-  double radius = 1;
 };
 
 /// What happened at one contact.
@@ -32,8 +29,7 @@ struct ContactOutcome {
 
 class ContactSolver {
  public:
-  explicit ContactSolver(const Params& params)
-      : params_(params), bounce_threshold_(params.bounceThreshold()) {}
+  explicit ContactSolver(const Params& params);
 
   /// Whether a contact is approached faster than the bounce threshold: an impact.
   bool anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const;
@@ -78,8 +74,20 @@ class ContactSolver {
   void measureWork(const std::vector<Contact>& contacts,
                    const std::vector<ContactOutcome>& outcomes);
 
+  /// The marble's constants as the solves use them, worked out once: each solve would otherwise
+  /// begin by waiting on a chain of divisions.
+  struct Marble {
+    double mass, inertia, radius;
+    double inv_mass, inv_inertia;
+    double g;             ///< r^2 / I: how a tangential impulse at the surface turns the spin
+    double k;             ///< 1/m + g: the tangential compliance at the surface
+    double tangent_mass;  ///< 1 / k: the effective mass for a tangential impulse there
+    double gamma;         ///< k - 1 / (m^2 k): how a pair's slipping friction turns its slip
+  };
+
   Params params_;
-  double bounce_threshold_;              // params_'s, worked out once
+  double bounce_threshold_;  // params_'s, worked out once
+  Marble marble_;
   std::vector<Vec3> friction_impulses_;  // reused: no allocation per step
   double surface_work_ = 0;
 };

@@ -21,9 +21,9 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
   const Vec3& na = contacts[0].normal;
   const Vec3& nb = contacts[1].normal;
   if (std::abs(na.dot(nb)) > 1e-12) return false;
-  const double m = body->mass, r = body->radius, mu = params_.friction;
-  const double g = r * r / body->inertia, k = 1 / m + g;  // tangential compliance: k = 1/m + g
-  const double gamma = k - 1 / (m * m * k);  // how a slip's friction along t turns its slip
+  const double m = marble_.mass, r = marble_.radius, mu = params_.friction;
+  const double g = marble_.g, k = marble_.k;
+  const double gamma = marble_.gamma;  // how a slip's friction along t turns its slip
   // The normal velocity change each contact needs (its target less its approach), per unit mass.
   double need[2];
   for (int i = 0; i < 2; ++i)
@@ -62,7 +62,7 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
     const Vec3& nl = contacts[f.l].normal;
     const Vec3 Fs = fs_a * nl + fs_b * f.t, Fl = fl_a * ns + fl_b * f.t;
     body->velocity += (Ns * ns + Fs + Nl * nl + Fl) / m;
-    body->angular_velocity += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / body->inertia;
+    body->angular_velocity += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / marble_.inertia;
     (*outcomes)[f.s].normal_impulse = Ns;
     (*outcomes)[f.l].normal_impulse = Nl;
     friction_impulses_[f.s] = Fs;

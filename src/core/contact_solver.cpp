@@ -24,15 +24,29 @@ void fill(std::vector<T>* v, std::size_t n, const T& value) {
 
 /// Kinetic energy relative to the mean velocity of the touched surfaces.
 double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity,
-                      const MarbleBody& body) {
+                      const MarbleBody& body, double mass, double inertia) {
   Vec3 surface = Vec3::Zero();
   for (const Contact& c : contacts) surface += c.surface_velocity;
   surface /= static_cast<double>(contacts.size());
-  return 0.5 * body.mass * (velocity - surface).squaredNorm() +
-         0.5 * body.inertia * body.angular_velocity.squaredNorm();
+  return 0.5 * mass * (velocity - surface).squaredNorm() +
+         0.5 * inertia * body.angular_velocity.squaredNorm();
 }
 
 }  // namespace
+
+ContactSolver::ContactSolver(const Params& params)
+    : params_(params), bounce_threshold_(params.bounceThreshold()) {
+  Marble& m = marble_;
+  m.mass = params.marbleMass();
+  m.inertia = params.marbleInertia();
+  m.radius = params.marble_radius;
+  m.inv_mass = 1.0 / m.mass;
+  m.inv_inertia = 1.0 / m.inertia;
+  m.g = m.radius * m.radius / m.inertia;
+  m.k = 1 / m.mass + m.g;
+  m.tangent_mass = 1.0 / (m.inv_mass + m.radius * m.radius * m.inv_inertia);
+  m.gamma = m.k - 1 / (m.mass * m.mass * m.k);
+}
 
 bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const {
   for (const Contact& c : contacts)
@@ -56,8 +70,10 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* bod
   measureWork(contacts, *outcomes);
   // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
   // would, the impacts are taken as perfectly inelastic instead, which never does.
-  if (contacts.size() > 1 && relativeEnergy(contacts, body->velocity, *body) >
-                                 relativeEnergy(contacts, before.velocity, before) * (1 + 1e-12)) {
+  const double m = marble_.mass, I = marble_.inertia;
+  if (contacts.size() > 1 &&
+      relativeEnergy(contacts, body->velocity, *body, m, I) >
+          relativeEnergy(contacts, before.velocity, before, m, I) * (1 + 1e-12)) {
     *body = before;
     iterate(contacts, false, body, outcomes);
     measureWork(contacts, *outcomes);
@@ -92,15 +108,14 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   for (auto& o : *outcomes) o.normal_impulse = 0;
   if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
   if (rolling && contacts.size() == 3 && solveTriple(contacts, restitution, body, outcomes)) return;
-  const double inv_mass = 1.0 / body->mass;
-  const double inv_inertia = 1.0 / body->inertia;
-  const double r = body->radius;
-  // Effective mass of a sphere for a tangential impulse at its surface.
-  const double tangent_mass = 1.0 / (inv_mass + r * r * inv_inertia);
+  const double inv_mass = marble_.inv_mass;
+  const double inv_inertia = marble_.inv_inertia;
+  const double r = marble_.radius;
+  const double tangent_mass = marble_.tangent_mass;
   // The velocities are worked on in locals, not through `body`: stores and loads of them in
   // memory, in pieces that do not match, would make each sweep wait.
   Vec3 velocity = body->velocity, spin = body->angular_velocity;
-  const double mass = body->mass;
+  const double mass = marble_.mass;
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
     double largest_change2 = 0;  // the square of any impulse's change in this sweep, (N s)^2
@@ -143,12 +158,12 @@ void ContactSolver::resistRolling(const std::vector<Contact>& contacts, MarbleBo
   for (const Contact& c : contacts) {
     const Vec3& n = c.normal;
     const double normal_impulse =
-        std::max(0.0, -(body->velocity - c.surface_velocity).dot(n)) * body->mass;
+        std::max(0.0, -(body->velocity - c.surface_velocity).dot(n)) * marble_.mass;
     const Vec3 rolling_spin = body->angular_velocity - body->angular_velocity.dot(n) * n;
     const double spin = rolling_spin.norm();
     if (spin == 0 || normal_impulse == 0) continue;
     const double change =
-        params_.rolling_resistance * normal_impulse * body->radius / body->inertia;
+        params_.rolling_resistance * normal_impulse * marble_.radius / marble_.inertia;
     body->angular_velocity -= rolling_spin * (std::min(spin, change) / spin);
   }
 }

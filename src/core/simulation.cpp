@@ -266,9 +266,6 @@ MarbleBody Simulation::body() const {
   MarbleBody body;
   body.velocity = marble_.velocity;
   body.angular_velocity = marble_.angular_velocity;
-  body.mass = mass_;
-  body.inertia = inertia_;
-  body.radius = params_.marble_radius;
   return body;
 }
 

@@ -309,19 +309,16 @@ TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
   groove[1].normal = Vec3(1, 0, 0);
   for (Contact& c : groove) c.point = c.surface_velocity = Vec3::Zero();
   MarbleBody body;
-  body.mass = p.marbleMass();
-  body.inertia = p.marbleInertia();
-  body.radius = p.marble_radius;
   body.velocity = Vec3(-0.004, 0, -0.0098);  // a step of a tilted board's gravity
   std::vector<ContactOutcome> outcomes;
   solver.constrain(groove, &body, &outcomes);
   EXPECT_LT(body.velocity.norm(), 1e-16);
-  EXPECT_LT(body.angular_velocity.norm() * body.radius, 1e-16);
+  EXPECT_LT(body.angular_velocity.norm() * p.marble_radius, 1e-16);
   body.velocity = Vec3(-0.004, 0.3, -0.0098);  // and rolling along the groove
-  body.angular_velocity = Vec3(-0.3 / body.radius, 0, 0);
+  body.angular_velocity = Vec3(-0.3 / p.marble_radius, 0, 0);
   solver.constrain(groove, &body, &outcomes);
   const Vec3 floor_point =
-      body.velocity + body.angular_velocity.cross(-body.radius * groove[0].normal);
+      body.velocity + body.angular_velocity.cross(-p.marble_radius * groove[0].normal);
   EXPECT_LT(floor_point.norm(), 1e-15);      // rolls on the floor without slip
   EXPECT_NEAR(body.velocity.x(), 0, 1e-16);  // no approach to the wall
   EXPECT_NEAR(body.velocity.z(), 0, 1e-16);  // nor to the floor
@@ -349,15 +346,12 @@ TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
     c.surface_velocity = board_spin.cross(c.point);
   }
   MarbleBody body;
-  body.mass = p.marbleMass();
-  body.inertia = p.marbleInertia();
-  body.radius = p.marble_radius;
   body.velocity = board_spin.cross(centre) + Vec3(-0.004, -0.003, -0.0098);
   body.angular_velocity = board_spin + Vec3(0.2, -0.5, 0.3);
   std::vector<ContactOutcome> outcomes;
   solver.constrain(corner, &body, &outcomes);
   EXPECT_LT((body.velocity - board_spin.cross(centre)).norm(), 1e-15);
-  EXPECT_LT((body.angular_velocity - board_spin).norm() * body.radius, 1e-15);
+  EXPECT_LT((body.angular_velocity - board_spin).norm() * p.marble_radius, 1e-15);
   for (const ContactOutcome& o : outcomes) EXPECT_GT(o.normal_impulse, 0);  // all three press
 }
 

@@ -282,14 +282,13 @@ void Simulation::impact(double time) {
 }
 
 Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration) {
-  MarbleBody b = sim_->body();
+  MarbleBody b;
   b.velocity = start.linear + sim_->forces_.acceleration(start.linear) * duration;
   b.angular_velocity = start.angular;
-  sim_->solver_.constrain(sim_->acting_, &b, &sim_->sample_outcomes_);
-  if (!sampled_) {
-    sim_->acting_outcomes_ = sim_->sample_outcomes_;
-    sim_->board_work_ += sim_->solver_.surfaceWork();
-  }
+  // The first sample's outcomes say which contacts hold the marble; later ones are scratch.
+  sim_->solver_.constrain(sim_->acting_, &b,
+                          sampled_ ? &sim_->sample_outcomes_ : &sim_->acting_outcomes_);
+  if (!sampled_) sim_->board_work_ += sim_->solver_.surfaceWork();
   sampled_ = true;
   return {b.velocity, b.angular_velocity};
 }

@@ -1,6 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
-.PHONY: all deps build test demo bench tradeoff soak fuzz screenshot lint format clean ws
+.PHONY: all deps build test demo bench instructions tradeoff soak fuzz screenshot lint format clean ws
 
 all: build
 
@@ -18,6 +18,11 @@ demo: build
 
 bench: build
 	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"
+
+# Instructions a step (callgrind), which no machine's speed or load moves: CASES is a regex of
+# make bench's cases (default: free flight, open floor, mazes; about 15 s).
+instructions: build
+	@bash scripts/count_instructions.sh $${CASES:+"$$CASES"}
 
 # The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (a few minutes).
 tradeoff: build

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Instructions a step, counted by callgrind: the cost of a step that no machine's speed or load
+# moves, where make bench's times vary by 10% from run to run. Runs the benchmark cases matching
+# the regex given (default: free flight, open floor, mazes) under callgrind for a short while
+# each, and prints Simulation::step's inclusive count over its calls (the benchmark's own loop
+# and the scenes' building left out), with each case's ratio to free flight.
+set -euo pipefail
+. "$(dirname "$0")/workspace.sh"
+filter=${1:-'FreeFlight|OpenFloor|MazeSize'}
+bench=$WS/devel/lib/marble_maze/marble_maze_bench
+command -v valgrind >/dev/null || { echo "valgrind is missing: make deps installs it" >&2; exit 1; }
+[ -x "$bench" ] || { echo "$bench is missing: make build builds it" >&2; exit 1; }
+cases=$("$bench" --benchmark_list_tests=true --benchmark_filter="$filter")
+[ -n "$cases" ] || { echo "no benchmark case matches '$filter'" >&2; exit 1; }
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+# Instructions per call of Simulation::step in one callgrind file: the inclusive cost of every
+# call to it, over the number of calls.
+per_step() {
+  /usr/bin/python3 - "$1" <<'PY'
+import re, sys
+names, calls, cost, pending = {}, 0, 0, False
+for line in open(sys.argv[1]):
+    m = re.match(r"cfn=\((\d+)\)(?: (.*))?", line)
+    if m:
+        if m.group(2):
+            names[m.group(1)] = m.group(2).strip()
+        target = names.get(m.group(1), "")
+        continue
+    if line.startswith("calls="):
+        pending = target.startswith("marble_maze::Simulation::step()")
+        if pending:
+            calls += int(line.split()[0][len("calls="):])
+        continue
+    if pending:  # the line after a call: its position and inclusive cost
+        cost += int(line.split()[-1])
+        pending = False
+    m = re.match(r"fn=\((\d+)\)(?: (.*))?", line)
+    if m and m.group(2):
+        names[m.group(1)] = m.group(2).strip()
+if calls == 0:
+    sys.exit("Simulation::step was never called")
+print(cost // calls)
+PY
+}
+
+count() {
+  valgrind --tool=callgrind --callgrind-out-file="$out/cg" "$bench" --benchmark_filter="^$1\$" \
+    --benchmark_min_time=0.05 >"$out/log" 2>&1 || { cat "$out/log" >&2; exit 1; }
+  per_step "$out/cg"
+}
+
+baseline=$(count BM_FreeFlight)
+printf '%-42s %22s %14s\n' case "instructions a step" "/ free flight"
+for c in $cases; do
+  n=$baseline
+  [ "$c" = BM_FreeFlight ] || n=$(count "$c")
+  awk -v c="$c" -v n="$n" -v b="$baseline" 'BEGIN { printf "%-42s %22d %14.2f\n", c, n, n / b }'
+done

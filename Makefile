@@ -20,7 +20,8 @@ bench: build
 	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"
 
 # Instructions a step (callgrind), which no machine's speed or load moves: CASES is a regex of
-# make bench's cases (default: free flight, open floor, mazes; about 15 s).
+# make bench's cases (default: free flight, open floor, mazes), each run for STEPS steps (default
+# 20,000; about 20 s in all).
 instructions: build
 	@bash scripts/count_instructions.sh $${CASES:+"$$CASES"}
 

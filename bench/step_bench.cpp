@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -58,6 +59,21 @@ void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_
       static_cast<double>(after.tiles_swept - before.tiles_swept) / steps;
 }
 
+/// With MARBLE_MAZE_BENCH_STEPS set (make instructions sets it), a case runs exactly that many
+/// steps, once, rather than as many as fit a time: the same steps on any machine, so that a
+/// count of their instructions is the same from run to run.
+void fixedSteps(benchmark::internal::Benchmark* b) {
+  const char* text = std::getenv("MARBLE_MAZE_BENCH_STEPS");
+  if (!text) return;
+  char* end = nullptr;
+  const long long steps = std::strtoll(text, &end, 10);
+  if (end == text || *end != '\0' || steps <= 0) {
+    std::fprintf(stderr, "MARBLE_MAZE_BENCH_STEPS: '%s' is not a positive whole number\n", text);
+    std::exit(2);
+  }
+  b->Iterations(steps);
+}
+
 /// The baseline: the step's fixed part. The marble falls from 1 m above the tilting board, far
 /// from every tile, for 0.4 s at a time.
 void BM_FreeFlight(benchmark::State& state) {
@@ -67,7 +83,7 @@ void BM_FreeFlight(benchmark::State& state) {
   mm::Simulation sim(scene);
   runSteps(state, &sim, 400);
 }
-BENCHMARK(BM_FreeFlight);
+BENCHMARK(BM_FreeFlight)->Apply(fixedSteps);
 
 /// Rolling on an open floor of 60 x 60 cells inside the outer walls, started over every second:
 /// under the circling tilt it never goes faster than 0.7 m/s, so it never reaches the walls 0.8 m
@@ -76,7 +92,7 @@ void BM_OpenFloor(benchmark::State& state) {
   mm::Simulation sim(sceneOfSize(-60));
   runSteps(state, &sim, 1000);
 }
-BENCHMARK(BM_OpenFloor);
+BENCHMARK(BM_OpenFloor)->Apply(fixedSteps);
 
 /// The generated mazes: the cost must not grow with their size, nor jump at any one size.
 void BM_StepByMazeSize(benchmark::State& state) {
@@ -84,6 +100,7 @@ void BM_StepByMazeSize(benchmark::State& state) {
   runSteps(state, &sim);
 }
 BENCHMARK(BM_StepByMazeSize)
+    ->Apply(fixedSteps)
     ->ArgName("cells")
     ->Arg(10)
     ->Arg(100)
@@ -108,7 +125,7 @@ void BM_StepByPhysics(benchmark::State& state) {
   mm::Simulation sim(scene);
   runSteps(state, &sim);
 }
-BENCHMARK(BM_StepByPhysics)->ArgName("physics")->DenseRange(0, 2);
+BENCHMARK(BM_StepByPhysics)->Apply(fixedSteps)->ArgName("physics")->DenseRange(0, 2);
 
 /// Each integrator in the 10 x 10 maze, rolling, without and with air drag: RK4 asks the contacts
 /// four times a step only when a force changes over the step (drag); otherwise it costs what
@@ -124,7 +141,7 @@ void BM_StepByIntegrator(benchmark::State& state) {
   mm::Simulation sim(scene);
   runSteps(state, &sim);
 }
-BENCHMARK(BM_StepByIntegrator)->ArgNames({"integrator", "drag"})->ArgsProduct({{0, 1, 2}, {0, 1}});
+BENCHMARK(BM_StepByIntegrator)->Apply(fixedSteps)->ArgNames({"integrator", "drag"})->ArgsProduct({{0, 1, 2}, {0, 1}});
 
 void BM_StepBySubsteps(benchmark::State& state) {
   mm::Scene scene = sceneOfSize(10);
@@ -132,7 +149,7 @@ void BM_StepBySubsteps(benchmark::State& state) {
   mm::Simulation sim(scene);
   runSteps(state, &sim);
 }
-BENCHMARK(BM_StepBySubsteps)->ArgName("substeps")->Arg(1)->Arg(4)->Arg(16);
+BENCHMARK(BM_StepBySubsteps)->Apply(fixedSteps)->ArgName("substeps")->Arg(1)->Arg(4)->Arg(16);
 
 /// Prints the usual table, then each case as a ratio to the first case of its group.
 class RatioReporter : public benchmark::ConsoleReporter {

@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
 # Instructions a step, counted by callgrind: the cost of a step that no machine's speed or load
 # moves, where make bench's times vary by 10% from run to run. Runs the benchmark cases matching
-# the regex given (default: free flight, open floor, mazes) under callgrind for a short while
-# each, and prints Simulation::step's inclusive count over its calls (the benchmark's own loop
-# and the scenes' building left out), with each case's ratio to free flight.
+# the regex given (default: free flight, open floor, mazes) under callgrind, each for the same
+# STEPS steps (default 20,000; MARBLE_MAZE_BENCH_STEPS), and prints Simulation::step's inclusive
+# count over its calls (the benchmark's own loop and the scenes' building left out), with each
+# case's ratio to free flight. The same build gives the same counts.
 set -euo pipefail
 . "$(dirname "$0")/workspace.sh"
 filter=${1:-'FreeFlight|OpenFloor|MazeSize'}
 bench=$WS/devel/lib/marble_maze/marble_maze_bench
 command -v valgrind >/dev/null || { echo "valgrind is missing: make deps installs it" >&2; exit 1; }
 [ -x "$bench" ] || { echo "$bench is missing: make build builds it" >&2; exit 1; }
-cases=$("$bench" --benchmark_list_tests=true --benchmark_filter="$filter")
+export MARBLE_MAZE_BENCH_STEPS=${STEPS:-20000}
+# (The cases' names end in /iterations:N then: the regex is matched against them without it.)
+cases=$("$bench" --benchmark_list_tests=true | sed 's|/iterations:[0-9]*$||' | grep -E "$filter" || true)
 [ -n "$cases" ] || { echo "no benchmark case matches '$filter'" >&2; exit 1; }
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -46,15 +49,22 @@ PY
 }
 
 count() {
-  valgrind --tool=callgrind --callgrind-out-file="$out/cg" "$bench" --benchmark_filter="^$1\$" \
-    --benchmark_min_time=0.05 >"$out/log" 2>&1 || { cat "$out/log" >&2; exit 1; }
+  # (The case's name as a regex of itself: its metacharacters escaped.)
+  local name
+  name=$(printf '%s' "$1" | sed 's/[][\.*^$+?(){}|]/\\&/g')
+  valgrind --tool=callgrind --cache-sim=no \
+    --branch-sim=no --callgrind-out-file="$out/cg" "$bench" \
+    --benchmark_filter="^$name/iterations:$MARBLE_MAZE_BENCH_STEPS\$" \
+    >"$out/log" 2>&1 || { cat "$out/log" >&2; exit 1; }
   per_step "$out/cg"
 }
 
 baseline=$(count BM_FreeFlight)
-printf '%-42s %22s %14s\n' case "instructions a step" "/ free flight"
+printf '%-42s %22s %14s\n' "case ($MARBLE_MAZE_BENCH_STEPS steps each)" "instructions a step" \
+  "/ free flight"
 for c in $cases; do
   n=$baseline
   [ "$c" = BM_FreeFlight ] || n=$(count "$c")
-  awk -v c="$c" -v n="$n" -v b="$baseline" 'BEGIN { printf "%-42s %22d %14.2f\n", c, n, n / b }'
+  awk -v c="$c" -v n="$n" -v b="$baseline" \
+    'BEGIN { printf "%-42s %22d %14.2f\n", c, n, n / b }'
 done

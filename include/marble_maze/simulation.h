@@ -165,11 +165,7 @@ class Simulation {
   // The contacts whose forces act over the current stretch, and what they did in its first
   // sample; a bent path leaves out the contacts it is leaving (faster than resting and than the
   // surface under it changes; it may come back to them: an impact then, found by the sweep).
-  // They are all of contacts_ (the common case, and no copy), or those of them not leaving,
-  // copied into some_acting_.
-  const std::vector<Contact>& acting() const { return all_act_ ? contacts_ : some_acting_; }
-  bool all_act_ = true;
-  std::vector<Contact> some_acting_;
+  std::vector<Contact> acting_;
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };
 

@@ -141,7 +141,10 @@ void BM_StepByIntegrator(benchmark::State& state) {
   mm::Simulation sim(scene);
   runSteps(state, &sim);
 }
-BENCHMARK(BM_StepByIntegrator)->Apply(fixedSteps)->ArgNames({"integrator", "drag"})->ArgsProduct({{0, 1, 2}, {0, 1}});
+BENCHMARK(BM_StepByIntegrator)
+    ->Apply(fixedSteps)
+    ->ArgNames({"integrator", "drag"})
+    ->ArgsProduct({{0, 1, 2}, {0, 1}});
 
 void BM_StepBySubsteps(benchmark::State& state) {
   mm::Scene scene = sceneOfSize(10);

@@ -76,18 +76,20 @@ class ContactSolver {
 
   /// The marble's constants as the solves use them, worked out once: each solve would otherwise
   /// begin by waiting on a chain of divisions.
-  struct Marble {
+  struct MarbleConstants {
     double mass, inertia, radius;
     double inv_mass, inv_inertia;
-    double g;             ///< r^2 / I: how a tangential impulse at the surface turns the spin
-    double k;             ///< 1/m + g: the tangential compliance at the surface
-    double tangent_mass;  ///< 1 / k: the effective mass for a tangential impulse there
-    double gamma;         ///< k - 1 / (m^2 k): how a pair's slipping friction turns its slip
+    double g;  ///< r^2 / I: how a tangential impulse at the surface turns the spin
+    double k;  ///< 1/m + g: the tangential compliance at the surface
+    /// The effective mass for a tangential impulse there, 1 / (1/m + r^2 / I): k's reciprocal,
+    /// but worked out from the inverses as the sweeps always took it (which rounds otherwise).
+    double tangent_mass;
+    double gamma;  ///< k - 1 / (m^2 k): how a pair's slipping friction turns its slip
   };
 
   Params params_;
   double bounce_threshold_;  // params_'s, worked out once
-  Marble marble_;
+  MarbleConstants constants_;
   std::vector<Vec3> friction_impulses_;  // reused: no allocation per step
   double surface_work_ = 0;
 };

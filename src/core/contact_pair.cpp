@@ -7,7 +7,7 @@
 //     the frictions across it known up to a squeeze of the marble between the two surfaces,
 //     which changes no velocity and is chosen inside both friction cones;
 //   - one sticks, the other slips: one equation in one unknown (the slip's friction per unit of
-//     slip), solved by Newton's method from below, where it converges monotonically.
+//     slip), solved by Newton's method, which converges monotonically after its first step.
 // The answer is taken only when every contact keeps to its law (presses, stays in its cone,
 // slips against its friction); otherwise the sweeps solve the pair (both slipping, one leaving).
 #include <cmath>
@@ -21,9 +21,9 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
   const Vec3& na = contacts[0].normal;
   const Vec3& nb = contacts[1].normal;
   if (std::abs(na.dot(nb)) > 1e-12) return false;
-  const double m = marble_.mass, r = marble_.radius, mu = params_.friction;
-  const double g = marble_.g, k = marble_.k;
-  const double gamma = marble_.gamma;  // how a slip's friction along t turns its slip
+  const double m = constants_.mass, r = constants_.radius, mu = params_.friction;
+  const double g = constants_.g, k = constants_.k;
+  const double gamma = constants_.gamma;  // how a slip's friction along t turns its slip
   // The normal velocity change each contact needs (its target less its approach), per unit mass.
   double need[2];
   for (int i = 0; i < 2; ++i)
@@ -62,7 +62,7 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
     const Vec3& nl = contacts[f.l].normal;
     const Vec3 Fs = fs_a * nl + fs_b * f.t, Fl = fl_a * ns + fl_b * f.t;
     body->velocity += (Ns * ns + Fs + Nl * nl + Fl) / m;
-    body->angular_velocity += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / marble_.inertia;
+    body->angular_velocity += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / constants_.inertia;
     (*outcomes)[f.s].normal_impulse = Ns;
     (*outcomes)[f.l].normal_impulse = Nl;
     friction_impulses_[f.s] = Fs;
@@ -95,7 +95,8 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
     const double plain = std::sqrt(S * S + beta * beta);  // the slip's size at lambda = 0
     if (!(C > 0 && plain - mu * S > 0)) continue;
     // phi(lambda) = lambda |slip(lambda)| - mu (C + lambda S): convex and increasing from
-    // -mu C; Newton from the root with gamma = 0, which lies below it, converges from below.
+    // -mu C. Newton from the root with gamma = 0, which lies below it, steps over the root once
+    // (the tangent of a convex function lies below it) and then comes down to it monotonically.
     // With q = 1 + lambda gamma and R = sqrt(S^2 q^2 + beta^2) = q |slip|, its step phi / phi' is
     //   (lambda R^2 q - mu (C + lambda S) R q^2) / (R^2 q - lambda gamma beta^2 - mu S R q^2),
     // one square root and one division, the only waits on the iteration's path.

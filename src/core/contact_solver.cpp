@@ -36,7 +36,7 @@ double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity
 
 ContactSolver::ContactSolver(const Params& params)
     : params_(params), bounce_threshold_(params.bounceThreshold()) {
-  Marble& m = marble_;
+  MarbleConstants& m = constants_;
   m.mass = params.marbleMass();
   m.inertia = params.marbleInertia();
   m.radius = params.marble_radius;
@@ -70,7 +70,7 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* bod
   measureWork(contacts, *outcomes);
   // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
   // would, the impacts are taken as perfectly inelastic instead, which never does.
-  const double m = marble_.mass, I = marble_.inertia;
+  const double m = constants_.mass, I = constants_.inertia;
   if (contacts.size() > 1 &&
       relativeEnergy(contacts, body->velocity, *body, m, I) >
           relativeEnergy(contacts, before.velocity, before, m, I) * (1 + 1e-12)) {
@@ -108,14 +108,14 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   for (auto& o : *outcomes) o.normal_impulse = 0;
   if (rolling && contacts.size() == 2 && solvePair(contacts, restitution, body, outcomes)) return;
   if (rolling && contacts.size() == 3 && solveTriple(contacts, restitution, body, outcomes)) return;
-  const double inv_mass = marble_.inv_mass;
-  const double inv_inertia = marble_.inv_inertia;
-  const double r = marble_.radius;
-  const double tangent_mass = marble_.tangent_mass;
+  const double inv_mass = constants_.inv_mass;
+  const double inv_inertia = constants_.inv_inertia;
+  const double r = constants_.radius;
+  const double tangent_mass = constants_.tangent_mass;
   // The velocities are worked on in locals, not through `body`: stores and loads of them in
   // memory, in pieces that do not match, would make each sweep wait.
   Vec3 velocity = body->velocity, spin = body->angular_velocity;
-  const double mass = marble_.mass;
+  const double mass = constants_.mass;
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
     double largest_change2 = 0;  // the square of any impulse's change in this sweep, (N s)^2
@@ -158,12 +158,12 @@ void ContactSolver::resistRolling(const std::vector<Contact>& contacts, MarbleBo
   for (const Contact& c : contacts) {
     const Vec3& n = c.normal;
     const double normal_impulse =
-        std::max(0.0, -(body->velocity - c.surface_velocity).dot(n)) * marble_.mass;
+        std::max(0.0, -(body->velocity - c.surface_velocity).dot(n)) * constants_.mass;
     const Vec3 rolling_spin = body->angular_velocity - body->angular_velocity.dot(n) * n;
     const double spin = rolling_spin.norm();
     if (spin == 0 || normal_impulse == 0) continue;
     const double change =
-        params_.rolling_resistance * normal_impulse * marble_.radius / marble_.inertia;
+        params_.rolling_resistance * normal_impulse * constants_.radius / constants_.inertia;
     body->angular_velocity -= rolling_spin * (std::min(spin, change) / spin);
   }
 }

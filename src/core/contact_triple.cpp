@@ -27,8 +27,8 @@ bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, bool resti
                                 MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
   for (int i = 0; i < 3; ++i)
     if (std::abs(contacts[i].normal.dot(contacts[(i + 1) % 3].normal)) > 1e-12) return false;
-  const double m = marble_.mass, r = marble_.radius, mu = params_.friction;
-  const double g = marble_.g;
+  const double m = constants_.mass, r = constants_.radius, mu = params_.friction;
+  const double g = constants_.g;
   const Vec3& w = body->angular_velocity;
   double need[3];
   for (int i = 0; i < 3; ++i)
@@ -68,7 +68,7 @@ bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, bool resti
     friction_impulses_[i] = friction;
   }
   body->velocity += impulse / m;
-  body->angular_velocity += angular / marble_.inertia;
+  body->angular_velocity += angular / constants_.inertia;
   return true;
 }
 

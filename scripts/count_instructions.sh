@@ -23,7 +23,7 @@ trap 'rm -rf "$out"' EXIT
 per_step() {
   /usr/bin/python3 - "$1" <<'PY'
 import re, sys
-names, calls, cost, pending = {}, 0, 0, False
+names, calls, cost, pending, target = {}, 0, 0, False, ""
 for line in open(sys.argv[1]):
     m = re.match(r"cfn=\((\d+)\)(?: (.*))?", line)
     if m:

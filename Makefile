@@ -1,6 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
-.PHONY: all deps build test demo bench instructions tradeoff soak fuzz screenshot lint format clean ws
+.PHONY: all deps build test demo bench instructions budgets tradeoff soak fuzz screenshot lint format clean ws
 
 all: build
 
@@ -24,6 +24,11 @@ bench: build
 # 20,000; about 20 s in all).
 instructions: build
 	@bash scripts/count_instructions.sh $${CASES:+"$$CASES"}
+
+# Every case's instructions a step against its budget in bench/instruction_budgets.txt (about
+# 30 s; make test checks them too).
+budgets: build
+	@bash scripts/check_budgets.sh
 
 # The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (a few minutes).
 tradeoff: build

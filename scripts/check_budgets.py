@@ -6,13 +6,18 @@ BUDGETS is bench/instruction_budgets.txt; TABLE what count_instructions.sh print
 it names. Each rule is a check: it prints what it found, and with --junit writes one test case
 per rule (count_results.py counts them with make test's others). Exits 1 when a rule fails.
 """
+import collections
 import re
 import sys
 import xml.etree.ElementTree as ET
 
+# One line of a budgets file: its kind ("budget" or "flat"), case regex (as written and compiled),
+# limit, and file:line.
+Rule = collections.namedtuple("Rule", "kind pattern regex limit where")
+
 
 def read_rules(path):
-    """The rules of a budgets file, as (kind, regex, limit, where)."""
+    """The rules of a budgets file."""
     rules = []
     with open(path) as f:
         for number, line in enumerate(f, 1):
@@ -29,7 +34,7 @@ def read_rules(path):
                 limit = float(limit)
             except (re.error, ValueError) as e:
                 sys.exit(f"{where}: {e}")
-            rules.append((kind, pattern, regex, limit, where))
+            rules.append(Rule(kind, pattern, regex, limit, where))
     return rules
 
 
@@ -46,25 +51,34 @@ def read_counts(path):
 
 def check(rule, counts):
     """The rule's verdict: (passed, message)."""
-    kind, pattern, regex, limit, where = rule
-    cases = [c for c in counts if regex.fullmatch(c)]
+    cases = [c for c in counts if rule.regex.fullmatch(c)]
     if not cases:
-        return False, f"{where}: no benchmark case matches '{pattern}'"
-    if kind == "budget":
-        over = [f"{c} {counts[c]}" for c in cases if counts[c] > limit]
+        return False, f"{rule.where}: no benchmark case matches '{rule.pattern}'"
+    if rule.kind == "budget":
+        over = [f"{c} {counts[c]}" for c in cases if counts[c] > rule.limit]
         if over:
-            return False, (f"{where}: over the budget of {limit:.0f} instructions a step: "
+            return False, (f"{rule.where}: over the budget of {rule.limit:.0f} instructions a step: "
                            + ", ".join(over))
         most = max(counts[c] for c in cases)
-        return True, f"{pattern}: at most {most} instructions a step, within {limit:.0f}"
+        return True, f"{rule.pattern}: at most {most} instructions a step, within {rule.limit:.0f}"
     first = counts[cases[0]]
     ratios = {c: counts[c] / first for c in cases}
     worst = max(ratios, key=ratios.get)
-    message = (f"{pattern}: {min(ratios.values()):.3f} to {ratios[worst]:.3f} times {cases[0]}, "
-               f"at most {limit} ({worst}: {counts[worst]} instructions a step against {first})")
-    if ratios[worst] > limit:
-        return False, f"{where}: {message}"
+    message = (f"{rule.pattern}: {min(ratios.values()):.3f} to {ratios[worst]:.3f} times "
+               f"{cases[0]}, at most {rule.limit} ({worst}: {counts[worst]} instructions a step "
+               f"against {first})")
+    if ratios[worst] > rule.limit:
+        return False, f"{rule.where}: {message}"
     return True, message
+
+
+def every_case_budgeted(rules, counts, path):
+    """A case the benchmark gained without a budget goes unchecked: that is a failure too."""
+    budgets = [rule.regex for rule in rules if rule.kind == "budget"]
+    unbudgeted = [c for c in counts if not any(r.fullmatch(c) for r in budgets)]
+    if unbudgeted:
+        return False, f"{path}: no budget for " + ", ".join(unbudgeted)
+    return True, f"every one of the {len(counts)} cases has a budget"
 
 
 def main():
@@ -77,29 +91,17 @@ def main():
     if len(args) != 2:
         sys.exit(__doc__)
     rules, counts = read_rules(args[0]), read_counts(args[1])
+    verdicts = [(f"{rule.kind} {rule.pattern}", *check(rule, counts)) for rule in rules]
+    verdicts.append(("every case has a budget", *every_case_budgeted(rules, counts, args[0])))
     suite = ET.Element("testsuite", name="instruction_budgets")
-    failed = 0
-    for rule in rules:
-        passed, message = check(rule, counts)
+    for name, passed, message in verdicts:
         print(("" if passed else "FAILED: ") + message)
-        case = ET.SubElement(suite, "testcase", classname="InstructionBudgets",
-                             name=f"{rule[0]} {rule[1]}")
+        case = ET.SubElement(suite, "testcase", classname="InstructionBudgets", name=name)
         if not passed:
-            failed += 1
             ET.SubElement(case, "failure", message=message)
-    # A case the benchmark gained without a budget is unchecked: that is a failure too.
-    budgeted = [rule[2] for rule in rules if rule[0] == "budget"]
-    unbudgeted = [c for c in counts if not any(r.fullmatch(c) for r in budgeted)]
-    case = ET.SubElement(suite, "testcase", classname="InstructionBudgets",
-                         name="every case has a budget")
-    if unbudgeted:
-        failed += 1
-        message = f"{args[0]}: no budget for " + ", ".join(unbudgeted)
-        print("FAILED: " + message)
-        ET.SubElement(case, "failure", message=message)
     if junit:
         ET.ElementTree(suite).write(junit)
-    return 1 if failed else 0
+    return 0 if all(passed for _, passed, _ in verdicts) else 1
 
 
 if __name__ == "__main__":

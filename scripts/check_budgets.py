@@ -57,8 +57,8 @@ def check(rule, counts):
     if rule.kind == "budget":
         over = [f"{c} {counts[c]}" for c in cases if counts[c] > rule.limit]
         if over:
-            return False, (f"{rule.where}: over the budget of {rule.limit:.0f} instructions a step: "
-                           + ", ".join(over))
+            return False, (f"{rule.where}: over the budget of {rule.limit:.0f} instructions a "
+                           "step: " + ", ".join(over))
         most = max(counts[c] for c in cases)
         return True, f"{rule.pattern}: at most {most} instructions a step, within {rule.limit:.0f}"
     first = counts[cases[0]]

@@ -181,6 +181,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
       std::printf("%-40s %-26s %10.1f %10.2f %12.2f\n", row.name.c_str(), row.label.c_str(), row.ns,
                   row.ns / base, flight > 0 ? row.ns / flight : 0.0);
     }
+    printTargets();
   }
 
  private:
@@ -188,6 +189,44 @@ class RatioReporter : public benchmark::ConsoleReporter {
     std::string group, name, label;
     double ns;
   };
+
+  /// Issue 11's targets, for the cases of this run that they name: the most ns a step of a
+  /// group's costliest case and, for the mazes, of their costliest size against the smallest.
+  void printTargets() const {
+    struct Target {
+      const char* what;
+      const char* group;
+      double most_ns;
+      double most_ratio;  // the costliest case against the group's first, the smallest (0: none)
+    };
+    const Target targets[] = {
+        {"free flight", "BM_FreeFlight", 100, 0},
+        {"rolling on an open floor", "BM_OpenFloor", 100, 0},
+        {"generated mazes, the costliest size", "BM_StepByMazeSize", 150, 1.15}};
+    const auto line = [](const std::string& what, double value, double most) {
+      char verdict[48] = "met";
+      if (value > most) std::snprintf(verdict, sizeof verdict, "%.2f x the target", value / most);
+      std::printf("%-67s %10.2f %10.2f  %s\n", what.c_str(), value, most, verdict);
+    };
+    bool header = false;
+    for (const Target& target : targets) {
+      double first = 0, costliest = 0;
+      for (const Row& row : rows_)
+        if (row.group == target.group) {
+          if (first == 0) first = row.ns;
+          costliest = std::max(costliest, row.ns);
+        }
+      if (costliest == 0) continue;  // not in this run
+      if (!header)
+        std::printf("\n%-67s %10s %10s  %s\n", "issue 11's targets", "this run", "target",
+                    "verdict");
+      header = true;
+      line(std::string(target.what) + ", ns a step", costliest, target.most_ns);
+      if (target.most_ratio > 0)
+        line(std::string(target.what) + " / the smallest", costliest / first, target.most_ratio);
+    }
+  }
+
   std::vector<Row> rows_;
 };
 

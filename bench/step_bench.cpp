@@ -211,9 +211,10 @@ class RatioReporter : public benchmark::ConsoleReporter {
     bool header = false;
     for (const Target& target : targets) {
       double first = 0, costliest = 0;
+      int cases = 0;
       for (const Row& row : rows_)
         if (row.group == target.group) {
-          if (first == 0) first = row.ns;
+          if (cases++ == 0) first = row.ns;
           costliest = std::max(costliest, row.ns);
         }
       if (costliest == 0) continue;  // not in this run
@@ -222,7 +223,7 @@ class RatioReporter : public benchmark::ConsoleReporter {
                     "verdict");
       header = true;
       line(std::string(target.what) + ", ns a step", costliest, target.most_ns);
-      if (target.most_ratio > 0)
+      if (target.most_ratio > 0 && cases > 1)  // (one size alone says nothing of a cliff)
         line(std::string(target.what) + " / the smallest", costliest / first, target.most_ratio);
     }
   }

@@ -2,22 +2,24 @@
 
 Usage: check_budgets.py BUDGETS TABLE [--junit FILE]
 
-BUDGETS is bench/instruction_budgets.txt; TABLE what count_instructions.sh printed for the cases
-it names. Each rule is a check: it prints what it found, and with --junit writes one test case
-per rule (count_results.py counts them with make test's others). Exits 1 when a rule fails.
+BUDGETS is bench/instruction_budgets.txt; TABLE what count_instructions.sh printed. Each rule
+is a check, and so is "every case has a budget": each prints what it found, and with --junit
+is written as one test case (count_results.py counts them with make test's others). Exits 1
+when a check fails.
 """
+import argparse
 import collections
+import math
 import re
 import sys
 import xml.etree.ElementTree as ET
 
-# One line of a budgets file: its kind ("budget" or "flat"), case regex (as written and compiled),
-# limit, and file:line.
-Rule = collections.namedtuple("Rule", "kind pattern regex limit where")
+# One line of a budgets file: its kind ("budget" or "flat"), case regex, limit, and file:line.
+Rule = collections.namedtuple("Rule", "kind regex limit where")
 
 
 def read_rules(path):
-    """The rules of a budgets file."""
+    """The rules of a budgets file; a line that is not one stops the check, naming it."""
     rules = []
     with open(path) as f:
         for number, line in enumerate(f, 1):
@@ -34,12 +36,14 @@ def read_rules(path):
                 limit = float(limit)
             except (re.error, ValueError) as e:
                 sys.exit(f"{where}: {e}")
-            rules.append(Rule(kind, pattern, regex, limit, where))
+            if not (math.isfinite(limit) and limit > 0):
+                sys.exit(f"{where}: the limit must be a positive number, got {words[2]}")
+            rules.append(Rule(kind, regex, limit, where))
     return rules
 
 
 def read_counts(path):
-    """Case name -> instructions a step, from count_instructions.sh's table, in its order."""
+    """Case name -> instructions a step, from count_instructions.sh's table."""
     counts = {}
     with open(path) as f:
         for line in f:
@@ -51,29 +55,31 @@ def read_counts(path):
 
 def check(rule, counts):
     """The rule's verdict: (passed, message)."""
-    cases = [c for c in counts if rule.regex.fullmatch(c)]
+    pattern = rule.regex.pattern
+    cases = {c: n for c, n in counts.items() if rule.regex.fullmatch(c)}
     if not cases:
-        return False, f"{rule.where}: no benchmark case matches '{rule.pattern}'"
+        return False, f"{rule.where}: no benchmark case matches '{pattern}'"
+    costliest = max(cases, key=cases.get)
     if rule.kind == "budget":
-        over = [f"{c} {counts[c]}" for c in cases if counts[c] > rule.limit]
+        over = [f"{c} {n}" for c, n in cases.items() if n > rule.limit]
         if over:
             return False, (f"{rule.where}: over the budget of {rule.limit:.0f} instructions a "
                            "step: " + ", ".join(over))
-        most = max(counts[c] for c in cases)
-        return True, f"{rule.pattern}: at most {most} instructions a step, within {rule.limit:.0f}"
-    first = counts[cases[0]]
-    ratios = {c: counts[c] / first for c in cases}
-    worst = max(ratios, key=ratios.get)
-    message = (f"{rule.pattern}: {min(ratios.values()):.3f} to {ratios[worst]:.3f} times "
-               f"{cases[0]}, at most {rule.limit} ({worst}: {counts[worst]} instructions a step "
-               f"against {first})")
-    if ratios[worst] > rule.limit:
+        return True, (f"{pattern}: at most {cases[costliest]} instructions a step, within "
+                      f"{rule.limit:.0f}")
+    cheapest = min(cases, key=cases.get)
+    ratio = cases[costliest] / cases[cheapest] if cases[cheapest] > 0 else math.inf
+    message = (f"{pattern}: the costliest, {costliest} ({cases[costliest]}), is {ratio:.3f} "
+               f"times the cheapest, {cheapest} ({cases[cheapest]}), at most {rule.limit}")
+    if ratio > rule.limit:
         return False, f"{rule.where}: {message}"
     return True, message
 
 
 def every_case_budgeted(rules, counts, path):
     """A case the benchmark gained without a budget goes unchecked: that is a failure too."""
+    if not counts:
+        return False, "the table has no case: the count printed nothing"
     budgets = [rule.regex for rule in rules if rule.kind == "budget"]
     unbudgeted = [c for c in counts if not any(r.fullmatch(c) for r in budgets)]
     if unbudgeted:
@@ -82,25 +88,22 @@ def every_case_budgeted(rules, counts, path):
 
 
 def main():
-    args = sys.argv[1:]
-    junit = None
-    if "--junit" in args:
-        i = args.index("--junit")
-        junit = args[i + 1] if i + 1 < len(args) else sys.exit("--junit needs a file")
-        del args[i:i + 2]
-    if len(args) != 2:
-        sys.exit(__doc__)
-    rules, counts = read_rules(args[0]), read_counts(args[1])
-    verdicts = [(f"{rule.kind} {rule.pattern}", *check(rule, counts)) for rule in rules]
-    verdicts.append(("every case has a budget", *every_case_budgeted(rules, counts, args[0])))
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("budgets")
+    parser.add_argument("table")
+    parser.add_argument("--junit", help="write the verdicts here as JUnit XML")
+    args = parser.parse_args()
+    rules, counts = read_rules(args.budgets), read_counts(args.table)
+    verdicts = [(f"{rule.kind} {rule.regex.pattern}", *check(rule, counts)) for rule in rules]
+    verdicts.append(("every case has a budget", *every_case_budgeted(rules, counts, args.budgets)))
     suite = ET.Element("testsuite", name="instruction_budgets")
     for name, passed, message in verdicts:
         print(("" if passed else "FAILED: ") + message)
         case = ET.SubElement(suite, "testcase", classname="InstructionBudgets", name=name)
         if not passed:
             ET.SubElement(case, "failure", message=message)
-    if junit:
-        ET.ElementTree(suite).write(junit)
+    if args.junit:
+        ET.ElementTree(suite).write(args.junit)
     return 0 if all(passed for _, passed, _ in verdicts) else 1
 
 

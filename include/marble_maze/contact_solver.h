@@ -11,12 +11,6 @@
 
 namespace marble_maze {
 
-/// The marble's motion as the solver changes it (its mass, inertia and radius are the params').
-struct MarbleBody {
-  Vec3 velocity = Vec3::Zero();
-  Vec3 angular_velocity = Vec3::Zero();
-};
-
 /// What happened at one contact.
 struct ContactOutcome {
   double approach_speed = 0;  ///< relative normal speed towards the tile before the response
@@ -36,12 +30,12 @@ class ContactSolver {
   /// An impact, at an instant: an approach faster than the bounce threshold leaves at e times
   /// its speed (eq. (1)), a slower one at zero; friction acts with it. `outcomes` gets one entry
   /// per contact.
-  void impact(const std::vector<Contact>& contacts, MarbleBody* body,
+  void impact(const std::vector<Contact>& contacts, Velocities* body,
               std::vector<ContactOutcome>* outcomes);
   /// The contacts' forces over a stretch of time, given body's velocity at its end as the field's
   /// forces alone would leave it: no contact is approached at the end (none bounces), friction
   /// acts within its cone, rolling resistance slows the spin.
-  void constrain(const std::vector<Contact>& contacts, MarbleBody* body,
+  void constrain(const std::vector<Contact>& contacts, Velocities* body,
                  std::vector<ContactOutcome>* outcomes);
   /// The work (J) the moving surfaces did on the marble in the last impact or constrain: the sum
   /// of each contact's impulse dotted with its surface's velocity (0 on a board at rest). The
@@ -49,7 +43,7 @@ class ContactSolver {
   double surfaceWork() const { return surface_work_; }
 
  private:
-  void iterate(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
+  void iterate(const std::vector<Contact>& contacts, bool restitution, Velocities* body,
                std::vector<ContactOutcome>* outcomes);
   /// The normal speed a contact leaves at (eq. (1)): e times its approach when it bounces and
   /// restitution applies, else 0 (it rests or rolls on the tile).
@@ -64,13 +58,13 @@ class ContactSolver {
   }
   /// Two contacts at right angles, solved directly (contact_pair.cpp) when one or both stick:
   /// true with body, outcomes and frictions set; false, changing nothing, otherwise.
-  bool solvePair(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
+  bool solvePair(const std::vector<Contact>& contacts, bool restitution, Velocities* body,
                  std::vector<ContactOutcome>* outcomes);
   /// Three contacts at right angles (a corner), solved directly (contact_triple.cpp) when all
   /// three stick: true with body, outcomes and frictions set; false, changing nothing, otherwise.
-  bool solveTriple(const std::vector<Contact>& contacts, bool restitution, MarbleBody* body,
+  bool solveTriple(const std::vector<Contact>& contacts, bool restitution, Velocities* body,
                    std::vector<ContactOutcome>* outcomes);
-  void resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const;
+  void resistRolling(const std::vector<Contact>& contacts, Velocities* body) const;
   void measureWork(const std::vector<Contact>& contacts,
                    const std::vector<ContactOutcome>& outcomes);
 

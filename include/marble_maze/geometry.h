@@ -1,4 +1,4 @@
-// Vector types and the axis-aligned box shared by the physics core.
+// Vector types, a marble's velocities and the axis-aligned box shared by the physics core.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,6 +20,13 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
       Eigen::Vector2d(a.z(), a.x()).cwiseProduct(Eigen::Vector2d(b.y(), b.z()));
   return Vec3(xy.x(), xy.y(), a.x() * b.y() - a.y() * b.x());
 }
+
+/// A marble's linear and angular velocity (world frame), as the integrators advance them and the
+/// contact solver changes them (its mass, inertia and radius are the params').
+struct Velocities {
+  Vec3 linear = Vec3::Zero();
+  Vec3 angular = Vec3::Zero();
+};
 
 /// An axis-aligned box, given by its lower and upper corners.
 struct Box {

@@ -23,12 +23,6 @@ class FieldForces {
   double drag_;  // 1/m: the drag's acceleration is -drag |v| v
 };
 
-/// The marble's linear and angular velocity (world frame).
-struct Velocities {
-  Vec3 linear = Vec3::Zero();
-  Vec3 angular = Vec3::Zero();
-};
-
 /// The marble's dynamics as a scheme samples them: its velocities after `duration` from `start`
 /// under the field's forces and the forces of the contacts it rests or rolls on (which keep it
 /// out of their tiles, with friction and rolling resistance), as one first-order step gives

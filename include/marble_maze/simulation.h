@@ -139,7 +139,6 @@ class Simulation {
   void chooseActingContacts(double duration, const Vec3& previous_spin);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const;
-  MarbleBody body() const;
   void impact(double time);
   void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);

@@ -17,7 +17,7 @@
 namespace marble_maze {
 
 bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitution,
-                              MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+                              Velocities* body, std::vector<ContactOutcome>* outcomes) {
   const Vec3& na = contacts[0].normal;
   const Vec3& nb = contacts[1].normal;
   if (std::abs(na.dot(nb)) > 1e-12) return false;
@@ -27,7 +27,7 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
   // The normal velocity change each contact needs (its target less its approach), per unit mass.
   double need[2];
   for (int i = 0; i < 2; ++i)
-    need[i] = normalNeed(contacts[i], (*outcomes)[i], restitution, body->velocity);
+    need[i] = normalNeed(contacts[i], (*outcomes)[i], restitution, body->linear);
   // In the frame of contact s and contact l (t = n_s x n_l along the line where they meet), the
   // slips the frictions f (f_s = fs_a n_l + fs_b t, f_l = fl_a n_s + fl_b t) leave are
   //   at s, across: A_s + g (fs_a - fl_a)      at s, along: Ws_t + k fs_b + fl_b / m
@@ -42,9 +42,9 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
     Frame f{s, l, contacts[s].normal.cross(contacts[l].normal), 0, 0, 0, 0};
     const Vec3& ns = contacts[s].normal;
     const Vec3& nl = contacts[l].normal;
-    const Vec3 vs = body->velocity - contacts[s].surface_velocity;
-    const Vec3 vl = body->velocity - contacts[l].surface_velocity;
-    const Vec3& w = body->angular_velocity;
+    const Vec3 vs = body->linear - contacts[s].surface_velocity;
+    const Vec3 vl = body->linear - contacts[l].surface_velocity;
+    const Vec3& w = body->angular;
     f.A_s = vs.dot(nl) - r * w.dot(f.t) + need[l];
     f.A_l = vl.dot(ns) + r * w.dot(f.t) + need[s];
     f.ws_t = vs.dot(f.t) + r * w.dot(nl);
@@ -61,8 +61,8 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitu
     const Vec3& ns = contacts[f.s].normal;
     const Vec3& nl = contacts[f.l].normal;
     const Vec3 Fs = fs_a * nl + fs_b * f.t, Fl = fl_a * ns + fl_b * f.t;
-    body->velocity += (Ns * ns + Fs + Nl * nl + Fl) / m;
-    body->angular_velocity += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / constants_.inertia;
+    body->linear += (Ns * ns + Fs + Nl * nl + Fl) / m;
+    body->angular += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / constants_.inertia;
     (*outcomes)[f.s].normal_impulse = Ns;
     (*outcomes)[f.l].normal_impulse = Nl;
     friction_impulses_[f.s] = Fs;

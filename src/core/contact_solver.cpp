@@ -24,12 +24,12 @@ void fill(std::vector<T>* v, std::size_t n, const T& value) {
 
 /// Kinetic energy relative to the mean velocity of the touched surfaces.
 double relativeEnergy(const std::vector<Contact>& contacts, const Vec3& velocity,
-                      const MarbleBody& body, double mass, double inertia) {
+                      const Velocities& body, double mass, double inertia) {
   Vec3 surface = Vec3::Zero();
   for (const Contact& c : contacts) surface += c.surface_velocity;
   surface /= static_cast<double>(contacts.size());
   return 0.5 * mass * (velocity - surface).squaredNorm() +
-         0.5 * inertia * body.angular_velocity.squaredNorm();
+         0.5 * inertia * body.angular.squaredNorm();
 }
 
 }  // namespace
@@ -54,33 +54,33 @@ bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& 
   return false;
 }
 
-void ContactSolver::impact(const std::vector<Contact>& contacts, MarbleBody* body,
+void ContactSolver::impact(const std::vector<Contact>& contacts, Velocities* body,
                            std::vector<ContactOutcome>* outcomes) {
   fill(outcomes, contacts.size(), ContactOutcome());
   surface_work_ = 0;
   if (contacts.empty()) return;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];
-    const double approach = -(body->velocity - c.surface_velocity).dot(c.normal);
+    const double approach = -(body->linear - c.surface_velocity).dot(c.normal);
     (*outcomes)[i].approach_speed = approach;
     (*outcomes)[i].bounce = approach > bounce_threshold_;
   }
-  const MarbleBody before = *body;
+  const Velocities before = *body;
   iterate(contacts, true, body, outcomes);
   measureWork(contacts, *outcomes);
   // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
   // would, the impacts are taken as perfectly inelastic instead, which never does.
   const double m = constants_.mass, I = constants_.inertia;
   if (contacts.size() > 1 &&
-      relativeEnergy(contacts, body->velocity, *body, m, I) >
-          relativeEnergy(contacts, before.velocity, before, m, I) * (1 + 1e-12)) {
+      relativeEnergy(contacts, body->linear, *body, m, I) >
+          relativeEnergy(contacts, before.linear, before, m, I) * (1 + 1e-12)) {
     *body = before;
     iterate(contacts, false, body, outcomes);
     measureWork(contacts, *outcomes);
   }
 }
 
-void ContactSolver::constrain(const std::vector<Contact>& contacts, MarbleBody* body,
+void ContactSolver::constrain(const std::vector<Contact>& contacts, Velocities* body,
                               std::vector<ContactOutcome>* outcomes) {
   fill(outcomes, contacts.size(), ContactOutcome());
   surface_work_ = 0;
@@ -102,7 +102,7 @@ void ContactSolver::measureWork(const std::vector<Contact>& contacts,
 }
 
 void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restitution,
-                            MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+                            Velocities* body, std::vector<ContactOutcome>* outcomes) {
   const bool rolling = params_.model == Model::Rolling && params_.friction > 0;
   fill(&friction_impulses_, contacts.size(), Vec3(Vec3::Zero()));
   for (auto& o : *outcomes) o.normal_impulse = 0;
@@ -114,7 +114,7 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
   const double tangent_mass = constants_.tangent_mass;
   // The velocities are worked on in locals, not through `body`: stores and loads of them in
   // memory, in pieces that do not match, would make each sweep wait.
-  Vec3 velocity = body->velocity, spin = body->angular_velocity;
+  Vec3 velocity = body->linear, spin = body->angular;
   const double mass = constants_.mass;
   const int iterations = contacts.size() == 1 ? 1 : kMaxIterations;
   for (int iteration = 0; iteration < iterations; ++iteration) {
@@ -148,23 +148,23 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restituti
     // Converged: a further sweep would change no velocity by more than 1e-12 m/s.
     if (largest_change2 * inv_mass * inv_mass < kConverged * kConverged) break;
   }
-  body->velocity = velocity;
-  body->angular_velocity = spin;
+  body->linear = velocity;
+  body->angular = spin;
 }
 
-void ContactSolver::resistRolling(const std::vector<Contact>& contacts, MarbleBody* body) const {
+void ContactSolver::resistRolling(const std::vector<Contact>& contacts, Velocities* body) const {
   // A torque of c_rr N r against the rolling part of the spin, with N the impulse that stops the
   // contact's approach (exact for one contact; the contacts of a tile grid are at right angles).
   for (const Contact& c : contacts) {
     const Vec3& n = c.normal;
     const double normal_impulse =
-        std::max(0.0, -(body->velocity - c.surface_velocity).dot(n)) * constants_.mass;
-    const Vec3 rolling_spin = body->angular_velocity - body->angular_velocity.dot(n) * n;
+        std::max(0.0, -(body->linear - c.surface_velocity).dot(n)) * constants_.mass;
+    const Vec3 rolling_spin = body->angular - body->angular.dot(n) * n;
     const double spin = rolling_spin.norm();
     if (spin == 0 || normal_impulse == 0) continue;
     const double change =
         params_.rolling_resistance * normal_impulse * constants_.radius / constants_.inertia;
-    body->angular_velocity -= rolling_spin * (std::min(spin, change) / spin);
+    body->angular -= rolling_spin * (std::min(spin, change) / spin);
   }
 }
 

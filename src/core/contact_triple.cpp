@@ -24,19 +24,19 @@
 namespace marble_maze {
 
 bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, bool restitution,
-                                MarbleBody* body, std::vector<ContactOutcome>* outcomes) {
+                                Velocities* body, std::vector<ContactOutcome>* outcomes) {
   for (int i = 0; i < 3; ++i)
     if (std::abs(contacts[i].normal.dot(contacts[(i + 1) % 3].normal)) > 1e-12) return false;
   const double m = constants_.mass, r = constants_.radius, mu = params_.friction;
   const double g = constants_.g;
-  const Vec3& w = body->angular_velocity;
+  const Vec3& w = body->angular;
   double need[3];
   for (int i = 0; i < 3; ++i)
-    need[i] = normalNeed(contacts[i], (*outcomes)[i], restitution, body->velocity);
+    need[i] = normalNeed(contacts[i], (*outcomes)[i], restitution, body->linear);
   const auto W = [&](int i, int j) {
     const Vec3& ni = contacts[i].normal;
     const Vec3& nj = contacts[j].normal;
-    return (body->velocity - contacts[i].surface_velocity).dot(nj) + need[j] -
+    return (body->linear - contacts[i].surface_velocity).dot(nj) + need[j] -
            r * w.dot(ni.cross(nj));
   };
   double a[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // a[i][j]: friction at i along n_j
@@ -67,8 +67,8 @@ bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, bool resti
     (*outcomes)[i].normal_impulse = normal[i];
     friction_impulses_[i] = friction;
   }
-  body->velocity += impulse / m;
-  body->angular_velocity += angular / constants_.inertia;
+  body->linear += impulse / m;
+  body->angular += angular / constants_.inertia;
   return true;
 }
 

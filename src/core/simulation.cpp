@@ -262,19 +262,12 @@ void Simulation::pushOut() {
   }
 }
 
-MarbleBody Simulation::body() const {
-  MarbleBody body;
-  body.velocity = marble_.velocity;
-  body.angular_velocity = marble_.angular_velocity;
-  return body;
-}
-
 void Simulation::impact(double time) {
-  MarbleBody b = body();
+  Velocities b{marble_.velocity, marble_.angular_velocity};
   solver_.impact(contacts_, &b, &outcomes_);
   board_work_ += solver_.surfaceWork();
-  marble_.velocity = b.velocity;
-  marble_.angular_velocity = b.angular_velocity;
+  marble_.velocity = b.linear;
+  marble_.angular_velocity = b.angular;
   for (std::size_t i = 0; i < contacts_.size(); ++i)
     if (outcomes_[i].bounce)
       events_.push_back(
@@ -282,15 +275,13 @@ void Simulation::impact(double time) {
 }
 
 Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration) {
-  MarbleBody b;
-  b.velocity = start.linear + sim_->forces_.acceleration(start.linear) * duration;
-  b.angular_velocity = start.angular;
+  Velocities b{start.linear + sim_->forces_.acceleration(start.linear) * duration, start.angular};
   // The first sample's outcomes say which contacts hold the marble; later ones are scratch.
   sim_->solver_.constrain(sim_->acting_, &b,
                           sampled_ ? &sim_->sample_outcomes_ : &sim_->acting_outcomes_);
   if (!sampled_) sim_->board_work_ += sim_->solver_.surfaceWork();
   sampled_ = true;
-  return {b.velocity, b.angular_velocity};
+  return b;
 }
 
 void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {

@@ -282,18 +282,18 @@ TEST(Impact, SimultaneousImpactsThatNewtonsLawWouldMakeGainEnergyStopInstead) {
   walls[1].normal = Vec3(std::cos(80 * kPi / 180), std::sin(80 * kPi / 180), 0);
   for (Contact& c : walls) c.point = c.surface_velocity = Vec3::Zero();
   const Vec3 approach = -Vec3(std::cos(10 * kPi / 180), std::sin(10 * kPi / 180), 0);
-  MarbleBody body;
-  body.velocity = approach;
+  Velocities body;
+  body.linear = approach;
   std::vector<ContactOutcome> outcomes;
   solver.impact(walls, &body, &outcomes);
-  EXPECT_LT(body.velocity.norm(), 1e-12);
+  EXPECT_LT(body.linear.norm(), 1e-12);
   ASSERT_EQ(outcomes.size(), 2u);
   EXPECT_TRUE(outcomes[0].bounce && outcomes[1].bounce);  // both were impacts
-  MarbleBody alone;
-  alone.velocity = approach;
+  Velocities alone;
+  alone.linear = approach;
   solver.impact({walls[0]}, &alone, &outcomes);
-  EXPECT_NEAR(alone.velocity.x(), -approach.x(), 1e-12);  // e = 1 off one wall
-  EXPECT_NEAR(alone.velocity.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(alone.linear.x(), -approach.x(), 1e-12);  // e = 1 off one wall
+  EXPECT_NEAR(alone.linear.norm(), 1.0, 1e-12);
 }
 
 TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
@@ -308,23 +308,22 @@ TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
   groove[0].normal = Vec3(0, 0, 1);
   groove[1].normal = Vec3(1, 0, 0);
   for (Contact& c : groove) c.point = c.surface_velocity = Vec3::Zero();
-  MarbleBody body;
-  body.velocity = Vec3(-0.004, 0, -0.0098);  // a step of a tilted board's gravity
+  Velocities body;
+  body.linear = Vec3(-0.004, 0, -0.0098);  // a step of a tilted board's gravity
   std::vector<ContactOutcome> outcomes;
   solver.constrain(groove, &body, &outcomes);
-  EXPECT_LT(body.velocity.norm(), 1e-16);
-  EXPECT_LT(body.angular_velocity.norm() * p.marble_radius, 1e-16);
-  body.velocity = Vec3(-0.004, 0.3, -0.0098);  // and rolling along the groove
-  body.angular_velocity = Vec3(-0.3 / p.marble_radius, 0, 0);
+  EXPECT_LT(body.linear.norm(), 1e-16);
+  EXPECT_LT(body.angular.norm() * p.marble_radius, 1e-16);
+  body.linear = Vec3(-0.004, 0.3, -0.0098);  // and rolling along the groove
+  body.angular = Vec3(-0.3 / p.marble_radius, 0, 0);
   solver.constrain(groove, &body, &outcomes);
-  const Vec3 floor_point =
-      body.velocity + body.angular_velocity.cross(-p.marble_radius * groove[0].normal);
+  const Vec3 floor_point = body.linear + body.angular.cross(-p.marble_radius * groove[0].normal);
   EXPECT_LT(floor_point.norm(), 1e-15);      // rolls on the floor without slip
-  EXPECT_NEAR(body.velocity.x(), 0, 1e-16);  // no approach to the wall
-  EXPECT_NEAR(body.velocity.z(), 0, 1e-16);  // nor to the floor
+  EXPECT_NEAR(body.linear.x(), 0, 1e-16);    // no approach to the wall
+  EXPECT_NEAR(body.linear.z(), 0, 1e-16);    // nor to the floor
   EXPECT_GT(outcomes[1].normal_impulse, 0);  // the wall presses
-  EXPECT_LT(body.velocity.y(), 0.3);         // and its friction slows the marble
-  EXPECT_GT(body.velocity.y(), 0.29);
+  EXPECT_LT(body.linear.y(), 0.3);           // and its friction slows the marble
+  EXPECT_GT(body.linear.y(), 0.29);
 }
 
 TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
@@ -345,13 +344,13 @@ TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
     c.point = centre - p.marble_radius * c.normal;
     c.surface_velocity = board_spin.cross(c.point);
   }
-  MarbleBody body;
-  body.velocity = board_spin.cross(centre) + Vec3(-0.004, -0.003, -0.0098);
-  body.angular_velocity = board_spin + Vec3(0.2, -0.5, 0.3);
+  Velocities body;
+  body.linear = board_spin.cross(centre) + Vec3(-0.004, -0.003, -0.0098);
+  body.angular = board_spin + Vec3(0.2, -0.5, 0.3);
   std::vector<ContactOutcome> outcomes;
   solver.constrain(corner, &body, &outcomes);
-  EXPECT_LT((body.velocity - board_spin.cross(centre)).norm(), 1e-15);
-  EXPECT_LT((body.angular_velocity - board_spin).norm() * p.marble_radius, 1e-15);
+  EXPECT_LT((body.linear - board_spin.cross(centre)).norm(), 1e-15);
+  EXPECT_LT((body.angular - board_spin).norm() * p.marble_radius, 1e-15);
   for (const ContactOutcome& o : outcomes) EXPECT_GT(o.normal_impulse, 0);  // all three press
 }
 

@@ -70,14 +70,16 @@ std::string describe(const mm::Event& e) {
   return text;
 }
 
-/// The marble and the tilt at an instant: what a recorded state shows.
+/// The marble and the tilt at an instant: what a recorded state shows (its position in the
+/// world, as the node publishes it).
 struct Shown {
+  mm::Vec3 position;
   mm::Marble marble;
   double roll, pitch;
 };
 
 Shown shown(const mm::Simulation& sim) {
-  return {sim.marble(), sim.board().roll(), sim.board().pitch()};
+  return {sim.worldPosition(), sim.marble(), sim.board().roll(), sim.board().pitch()};
 }
 
 /// How a recorded state differs from what the simulation shows ("" when it is exactly it).
@@ -85,7 +87,7 @@ std::string differs(const marble_maze::MarbleState& recorded, const Shown& now) 
   const mm::Marble& m = now.marble;
   const auto vec = [](const auto& v) { return mm::Vec3(v.x, v.y, v.z); };
   const std::pair<const char*, double> gaps[] = {
-      {"position", (vec(recorded.position) - m.position).norm()},
+      {"position", (vec(recorded.position) - now.position).norm()},
       {"velocity", (vec(recorded.velocity) - m.velocity).norm()},
       {"angular_velocity", (vec(recorded.angular_velocity) - m.angular_velocity).norm()},
       {"roll", std::abs(recorded.roll - now.roll)},

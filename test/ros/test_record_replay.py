@@ -2,7 +2,8 @@
 rosbag play), each on a master of its own:
 
   1. record about 18 s of a session the autopilot plays, the recorder started 3 s after the node,
-     with a reset and a pause (and 100 steps taken while paused) in it;
+     with a reset and a pause (and 100 steps taken while paused) in it, the board away from the
+     world's origin (board_position), so that states are compared in the world as published;
   2. re-simulate it offline (simulate --bag --check): every recorded state bit for bit;
   3. replay it live with replay.launch at 1 and 4 times real time, recording what it publishes:
      every state at the original's stamps is the original's bit for bit; the only recorded states
@@ -29,6 +30,8 @@ import unittest
 import rosbag
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# Where the recorded session's board is in the world, m: the states published are there.
+BOARD = (0.3, -0.2, 0.75)
 WS = os.environ.get("MARBLE_MAZE_WS", os.path.join(HERE, "..", "..", "..", "main.ws"))
 
 
@@ -98,6 +101,7 @@ class RecordReplayTest(unittest.TestCase):
         cls.session = os.path.join(cls.dir, "session.bag")
         master = Master()
         try:
+            master.run(["rosparam", "set", "/marble_maze/board_position", "%g,%g,%g" % BOARD])
             launch = master.start(["roslaunch", "marble_maze", "record.launch",
                                    "bag:=" + cls.session, "autopilot:=true", "delay:=3"])
             time.sleep(8)
@@ -118,6 +122,9 @@ class RecordReplayTest(unittest.TestCase):
         shutil.rmtree(cls.dir, ignore_errors=True)
 
     def test_1_offline_resimulation_is_bit_for_bit(self):
+        # (The states are in the world: the marble on the board where it was put.)
+        first = states(self.session)[0].position
+        self.assertLess(math.dist((first.x, first.y, first.z), BOARD), 0.2)
         run = subprocess.run([os.path.join(WS, "devel", "lib", "marble_maze", "simulate"), "--bag",
                               self.session, "--check"], capture_output=True, text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)

@@ -16,6 +16,8 @@ struct Scene {
   Params params;
   std::string text;    ///< the maze file's text it was read from ("" when built in code)
   std::string source;  ///< where the text came from: a path or "<embedded:NAME>"
+  /// The parameters the file's physics section sets, in its order (the rest are defaults).
+  std::vector<std::string> physics_keys;
 };
 
 /// A malformed maze file. what() reads "SOURCE:LINE:COLUMN: message" (1-based line and column).

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "marble_maze/embedded_mazes.h"
@@ -130,7 +131,7 @@ class SceneParser {
     Scene scene;
     scene.maze = readMaze(root, top);
     scene.maze.setName(readName(findEntry(top, "name")));
-    scene.params = readPhysics(findEntry(top, "physics"));
+    scene.params = readPhysics(findEntry(top, "physics"), &scene.physics_keys);
     return scene;
   }
 
@@ -466,13 +467,14 @@ class SceneParser {
                        [&](const ParamInfo& info) { return info.key == key; });
   }
 
-  Params readPhysics(const Entry* physics) const {
+  Params readPhysics(const Entry* physics, std::vector<std::string>* keys) const {
     Params params = defaults_;
     if (physics && !physics->value.IsNull()) {
       for (const auto& entry : readMapping(physics->value, "in physics", {})) {
         const std::string text = physicsText(entry);
         try {
           setParam(params, entry.key, text);
+          keys->push_back(entry.key);
         } catch (const ParamError& e) {
           fail(isParamKey(entry.key) ? at(entry.value) : at(entry.key_node), e.what());
         }
@@ -528,6 +530,15 @@ Scene loadScene(const std::string& name_or_path, const Params& defaults) {
   for (const auto& maze : embeddedMazes())
     if (maze.first == name_or_path)
       return parseScene(maze.second, "<embedded:" + maze.first + ">", defaults);
+  std::error_code error;
+  if (!std::filesystem::exists(name_or_path, error)) {
+    // A misspelt built-in name reads as a missing file: say what was looked for.
+    std::string names;
+    for (const std::string& name : embeddedSceneNames())
+      names += (names.empty() ? "" : ", ") + name;
+    throw MazeFileError(name_or_path, 0, 0,
+                        "neither a built-in maze (" + names + ") nor a file that exists");
+  }
   return loadSceneFile(name_or_path, defaults);
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <ostream>
+#include <set>
 
 namespace marble_maze {
 namespace runner {
@@ -21,17 +22,19 @@ Runs the marble_maze physics without ROS and reports what happened.
   --set KEY=VALUE      override a scene or physics value (repeatable); keys below
   --duration SECONDS   simulated time to run; default 5
   --out FILE           write the trajectory as CSV ('-' for standard output)
-  --events FILE        write the events as CSV
+  --events FILE        write the events as CSV ('-' for standard output)
   --every N            write every Nth step to the trajectory; default 1
   --quiet              no summary on standard output
   --bag FILE           re-simulate a session recorded by record.launch, from its first snapshot,
                        with its inputs at their steps (no ROS master needed); --set re-runs it
-                       under other physics; --duration is ignored
+                       under other physics (its maze, tilts and length are the bag's:
+                       --maze, --tilt, --tilt-csv and --duration are refused with it)
   --check              with --bag: compare with the bag's recorded marble_state, bit for bit;
                        exit 1 at the first difference, printing its time and size
-  --help               this text
+  --help, -h           this text
 
-The board starts at the tilt program's first value unless initial_roll or initial_pitch is set.
+The board starts at the tilt program's first value unless initial_roll or initial_pitch is set
+(by --set or in the maze file's physics section).
 
 Trajectory columns (world frame, SI units): t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase
   phase: free, in_hole, at_goal or off_board
@@ -60,6 +63,7 @@ double parseDouble(const std::string& flag, const std::string& text) {
 
 Options parseOptions(const std::vector<std::string>& args) {
   Options o;
+  std::set<std::string> given;
   const std::size_t argc = args.size();
   for (std::size_t i = 0; i < argc; ++i) {
     const std::string& flag = args[i];
@@ -75,9 +79,15 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.check = true;
       continue;
     }
-    if (i + 1 >= argc)
-      throw UsageError(flag +
-                       (flag.rfind("--", 0) == 0 ? ": needs a value" : ": unknown argument"));
+    static const std::set<std::string> kTakesAValue = {"--maze", "--tilt",     "--tilt-csv",
+                                                       "--set",  "--duration", "--out",
+                                                       "--bag",  "--events",   "--every"};
+    if (!kTakesAValue.count(flag))
+      throw UsageError(flag.rfind("--", 0) == 0
+                           ? "unknown option '" + flag + "' (see simulate --help)"
+                           : flag + ": unknown argument");
+    if (i + 1 >= argc) throw UsageError(flag + ": needs a value");
+    given.insert(flag);
     const std::string& value = args[++i];
     if (flag == "--maze") {
       o.maze = value;
@@ -116,10 +126,14 @@ Options parseOptions(const std::vector<std::string>& args) {
         throw UsageError("--every: expected a whole number from 1 to " +
                          std::to_string(std::numeric_limits<int>::max()) + ", got '" + value + "'");
       o.every = static_cast<int>(n);
-    } else {
-      throw UsageError("unknown option '" + flag + "' (see simulate --help)");
     }
   }
+  // A recorded session brings its maze, its tilts and its length: a flag that would set them
+  // again is refused rather than ignored.
+  if (!o.bag.empty())
+    for (const char* flag : {"--maze", "--tilt", "--tilt-csv", "--duration"})
+      if (given.count(flag))
+        throw UsageError(std::string(flag) + ": not with --bag, whose session sets it");
   return o;
 }
 
@@ -128,11 +142,16 @@ Run prepare(const Options& o) {
   Run run;
   Scene& scene = run.scene;
   bool initial_tilt_set = false;
+  const auto setsTilt = [](const std::string& key) {
+    return key == "initial_roll" || key == "initial_pitch";
+  };
   try {
     scene = loadScene(o.maze);
+    for (const std::string& key : scene.physics_keys)
+      initial_tilt_set = initial_tilt_set || setsTilt(key);
     for (const auto& [key, value] : o.sets) {
       setParam(scene.params, key, value);
-      initial_tilt_set = initial_tilt_set || key == "initial_roll" || key == "initial_pitch";
+      initial_tilt_set = initial_tilt_set || setsTilt(key);
     }
   } catch (const MazeFileError& e) {
     throw UsageError(e.what());

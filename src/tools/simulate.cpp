@@ -64,10 +64,18 @@ void writeRow(std::ostream& out, const mm::Simulation& sim) {
 }
 
 std::string describe(const mm::Event& e) {
-  char text[256];
-  std::snprintf(text, sizeof text, "%.6f,%s,%d,%d,%d,%.6g", e.time, mm::toString(e.kind).c_str(),
-                e.tile.x(), e.tile.y(), e.tile.z(), e.speed);
-  return text;
+  std::ostringstream text;
+  text << mm::exactText(e.time) << ',' << mm::toString(e.kind) << ',' << e.tile.x() << ','
+       << e.tile.y() << ',' << e.tile.z() << ',' << mm::exactText(e.speed);
+  return text.str();
+}
+
+constexpr const char* kEventsHeader = "t,kind,i,j,k,speed\n";
+
+/// The events' rows in CSV, every number in its shortest form that reads back exactly.
+void writeEvents(std::ostream* out, const std::vector<mm::Event>& events) {
+  if (out)
+    for (const mm::Event& e : events) *out << describe(e) << '\n';
 }
 
 /// The marble and the tilt at an instant: what a recorded state shows (its position in the
@@ -115,13 +123,15 @@ int rerun(const Options& o) {
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("--bag: ") + e.what());
   }
-  std::unique_ptr<std::ofstream> out_file;
+  std::unique_ptr<std::ofstream> out_file, events_file;
   std::ostream* out = openOutput(o.out, &out_file);
+  std::ostream* events = openOutput(o.events, &events_file);
   const mm::Simulation& sim = replay->session().simulation();
   if (out) {
     *out << "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
     writeRow(*out, sim);
   }
+  if (events) *events << kEventsHeader;
   const auto& states = recording.states;
   std::size_t next = 0, matched = 0, steps = 0;
   while (next < states.size() && states[next].header.stamp < replay->stamp()) ++next;
@@ -145,6 +155,7 @@ int rerun(const Options& o) {
     }
     if (stamp >= end) break;
     replay->step();
+    writeEvents(events, replay->session().events());
     ++steps;
     if (out && (steps % o.every == 0)) writeRow(*out, sim);
   }
@@ -170,17 +181,15 @@ int run(const Options& o) {
     *out << "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
     writeRow(*out, *sim);
   }
-  if (events) *events << "t,kind,i,j,k,speed\n";
+  if (events) *events << kEventsHeader;
   const auto steps = static_cast<std::uint64_t>(o.duration / scene.params.step + 0.5);
   std::vector<mm::Event> all_events;
   for (std::uint64_t n = 1; n <= steps; ++n) {
     const mm::TiltSchedule::Point tilt = o.tilt.at(static_cast<double>(n) * scene.params.step);
     sim->setTargetTilt(tilt.roll, tilt.pitch);
     sim->step();
-    for (const mm::Event& e : sim->events()) {
-      all_events.push_back(e);
-      if (events) *events << describe(e) << '\n';
-    }
+    all_events.insert(all_events.end(), sim->events().begin(), sim->events().end());
+    writeEvents(events, sim->events());
     if (out && (n % o.every == 0 || n == steps)) writeRow(*out, *sim);
   }
   if (!o.quiet) {

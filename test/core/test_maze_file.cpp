@@ -377,7 +377,8 @@ TEST(MazeFileError, MissingFile) {
     loadScene(path);
     FAIL() << "expected a MazeFileError";
   } catch (const MazeFileError& e) {
-    EXPECT_EQ(std::string(e.what()), path + ": cannot read file");
+    EXPECT_EQ(std::string(e.what()),
+              path + ": neither a built-in maze (classic, prototype) nor a file that exists");
     EXPECT_EQ(e.line, 0);
     EXPECT_EQ(e.source, path);
   }

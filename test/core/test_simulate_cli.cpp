@@ -67,6 +67,28 @@ TEST(SimulateCli, ATiltBeyondTheLimitIsClampedLikeAnyTilt) {
   EXPECT_EQ(runSimulate("--tilt 0.25,0 --set tilt_limit=0.3 --duration 0.01 --quiet").status, 0);
 }
 
+/// The board's roll in the trajectory's first row (at t = 0) of `simulate ARGS --out FILE`.
+double firstRoll(const std::string& args) {
+  const std::string out = tempPath("first_roll.csv");
+  std::remove(out.c_str());
+  EXPECT_EQ(runSimulate(args + " --duration 0.01 --quiet --out " + out).status, 0) << args;
+  const std::string rows = readFile(out);
+  std::istringstream row(rows.substr(rows.find('\n') + 1));
+  std::string field;
+  for (int i = 0; i < 11; ++i) std::getline(row, field, ',');  // roll is the 11th column
+  return std::stod(field);
+}
+
+TEST(SimulateCli, AnInitialTiltInTheMazeFileOrASetOneOutranksTheProgramsFirstTilt) {
+  const std::string maze = tempPath("tilted.yaml");
+  std::ofstream(maze) << "grid:\n  x: [0.005, 0.02]\n  y: [0.005, 0.02]\n  z: [0.005, 0.012]\n"
+                         "layout: |\n  +-+-+-+\n  |S   G|\n  +-+-+-+\n"
+                         "physics:\n  initial_roll: 0.05\n";
+  EXPECT_EQ(firstRoll("--maze " + maze + " --tilt 0,0"), 0.05);  // the file's
+  EXPECT_EQ(firstRoll("--maze " + maze + " --tilt 0,0 --set initial_roll=-0.02"), -0.02);
+  EXPECT_EQ(firstRoll("--tilt 0.03,0"), 0.03);  // else the program's first tilt
+}
+
 TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
   const std::pair<std::string, std::string> cases[] = {
       {"--bogus 1", "unknown option '--bogus'"},
@@ -93,6 +115,11 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--maze /dev/zero", "/dev/zero: more than 16 MB"},  // a device read without end
       {"--tilt-csv /dev/zero", "--tilt-csv: /dev/zero: more than 16 MB"},
       {"--maze /tmp", "/tmp: is a directory"},
+      {"--maze clasic", "clasic: neither a built-in maze (classic, prototype) nor a file"},
+      {"--quite", "unknown option '--quite'"},  // last, with no value after it
+      {"--bag session.bag --maze classic", "--maze: not with --bag, whose session sets it"},
+      {"--tilt 0,0 --bag session.bag", "--tilt: not with --bag"},
+      {"--bag session.bag --duration 3", "--duration: not with --bag"},
   };
   for (const auto& [args, message] : cases) {
     const Result r = runSimulate(args);

@@ -91,6 +91,14 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
       mm::getParam(p, "model").c_str(), mm::getParam(p, "integrator").c_str(), p.step, p.substeps,
       mode);
 
+  if (settings_.lockstep > 0 &&
+      std::abs(static_cast<double>(stepsPer(settings_.lockstep)) * p.step - settings_.lockstep) >
+          1e-9 * settings_.lockstep)
+    ROS_WARN(
+        "marble_maze: ~lockstep: %g s is not a whole number of steps of %g s; each command "
+        "advances %llu steps (%g s)",
+        settings_.lockstep, p.step, static_cast<unsigned long long>(stepsPer(settings_.lockstep)),
+        static_cast<double>(stepsPer(settings_.lockstep)) * p.step);
   if (settings_.own_clock || settings_.lockstep > 0) {
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     reanchor(ros::Time(0));  // ROS time is simulated time
@@ -277,8 +285,9 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
   const std::uint64_t now = session_->steps();
   if (settings_.lockstep > 0) {
     // A gym-like loop over plain topics: the command acts at once, for one control period.
+    // Paused, it waits for the next step taken (by `step`, or on resume), as on any clock.
     session_->command({now, kind, roll, pitch});
-    runSteps(std::max<std::uint64_t>(1, std::llround(settings_.lockstep / step())));
+    if (!session_->paused()) runSteps(stepsPer(settings_.lockstep));
     publishNow();
     updateHealth();
     return 0;
@@ -412,6 +421,16 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
     settings_.real_time_factor = factor;
     free_run_start_ = ros::WallTime::now();
     free_run_start_sim_ = simTime();
+  }
+  // A value changed live is one of the node's parameters from now on: a maze loaded later takes
+  // it over its file's physics, as it takes those the node started with.
+  auto& overrides = settings_.overrides;
+  for (const auto& [key, value] : changes) {
+    if (key == "real_time_factor") continue;
+    overrides.erase(std::remove_if(overrides.begin(), overrides.end(),
+                                   [&key = key](const auto& o) { return o.first == key; }),
+                    overrides.end());
+    overrides.emplace_back(key, value);
   }
   writeBack(pnh_, settings_, session_->simulation().params());
   marble_maze::SimInput input;

@@ -71,9 +71,10 @@ bool readFlag(const ros::NodeHandle& pnh, const std::string& key, bool fallback)
 
 const std::set<std::string>& nodeKeys() {
   static const std::set<std::string> keys = {
-      "maze",         "update_rate", "publish_rate",    "marker_rate", "tilt_timeout",
-      "rate_timeout", "auto_reset",  "world_frame",     "board_frame", "marble_frame",
-      "clock",        "lockstep",    "real_time_factor"};
+      "maze",         "update_rate", "publish_rate",     "marker_rate",      "tilt_timeout",
+      "rate_timeout", "auto_reset",  "world_frame",      "board_frame",      "marble_frame",
+      "clock",        "lockstep",    "real_time_factor", "diagnostic_period"};  // diagnostic_updater's
+                                                                                // own
   return keys;
 }
 
@@ -134,7 +135,9 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   checkFrames(pnh, s);
   s.own_clock = readFlag(pnh, "clock", s.own_clock);
   s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor, 0.0, 1e6);
-  s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 1e6);
+  // (A period is taken in one callback: a minute of steps at the finest step takes well under a
+  // second, a longer one would hold the node up.)
+  s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 60.0);
   if (s.own_clock && s.lockstep > 0)
     throw std::runtime_error(pnh.resolveName("lockstep") + ": a lockstep node owns /clock too; " +
                              pnh.resolveName("clock") + " must not be set with it");

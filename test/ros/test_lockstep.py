@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest of ~lockstep (run by lockstep.test, control period 0.02 s): each tilt command is
 answered by a marble_state exactly one control period (20 steps) later in simulated time, with
-the command in force; and the example agent (examples/lockstep_agent.py) brings the marble within
+the command in force; paused, a command waits for the next step taken; and the example agent (examples/lockstep_agent.py) brings the marble within
 5 mm of its point, printing the steps per second of wall time it reaches."""
 import importlib.util
 import os
@@ -13,6 +13,8 @@ import rospy
 import rostest
 
 from marble_maze.msg import BoardTilt, MarbleState
+from marble_maze.srv import Step
+from std_srvs.srv import Trigger
 
 PERIOD_NS = 20 * 10**6
 COMMANDS = 200
@@ -47,6 +49,36 @@ class LockstepTest(unittest.TestCase):
         self.assertAlmostEqual(states[-1].pitch, 0.05, delta=1e-9)  # the command in force
         print("lockstep: %d commands in %.2f s of wall time: %.0f steps per second"
               % (COMMANDS, wall, COMMANDS * 20 / wall))
+
+    def test_paused_a_command_waits_for_the_next_step_taken(self):
+        states, arrived = [], threading.Condition()
+
+        def on_state(msg):
+            with arrived:
+                states.append(msg)
+                arrived.notify()
+
+        rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1000)
+        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=10)
+        deadline = time.time() + 20
+        while tilt.get_num_connections() == 0 and time.time() < deadline:
+            time.sleep(0.05)
+        time.sleep(0.5)
+        rospy.wait_for_service("pause", timeout=20)
+        self.assertTrue(rospy.ServiceProxy("pause", Trigger)().success)
+        try:
+            step = rospy.ServiceProxy("step", Step)
+            base = step(1).state
+            tilt.publish(BoardTilt(roll=0.03, pitch=-0.02))
+            time.sleep(1.0)
+            with arrived:  # no step taken: no state later than the one before the command
+                self.assertFalse([m for m in states if m.header.stamp > base.header.stamp])
+            # One step taken: the command acts from it.
+            after = step(1).state
+            self.assertEqual(after.header.stamp.to_nsec() - base.header.stamp.to_nsec(), 10**6)
+            self.assertGreater(after.roll, base.roll)
+        finally:
+            self.assertTrue(rospy.ServiceProxy("resume", Trigger)().success)
 
     def test_the_example_agent_reaches_its_point(self):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",

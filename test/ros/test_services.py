@@ -10,7 +10,8 @@
     running; a built-in maze loads, `maze` and the markers follow;
   - dynamic_reconfigure: restitution 0.9 acts on the next bounce as eq. (1) says (the upward
     speed after it is 0.9 times the approach, less the gravity since, within 1e-6 m/s); a bad
-    value is refused and nothing changes; the values in force are on the parameter server;
+    value is refused and nothing changes; the values in force are on the parameter server, and
+    a value changed live holds over a maze loaded later;
   - /diagnostics carries the real-time factor; odom is published in world with child marble.
 """
 import math
@@ -169,6 +170,11 @@ class ServicesTest(unittest.TestCase):
         dt = (after.header.stamp - bounce.header.stamp).to_sec()
         # Eq. (1) on a level board at rest: v' = e v, then gravity for dt.
         self.assertAlmostEqual(after.velocity.z, 0.9 * bounce.impact_speed - G * dt, delta=1e-6)
+        # A value changed live holds over a maze loaded later, as the node's parameters do.
+        loaded = call("load_maze", LoadMaze, rospy.get_param("~maze"))
+        self.assertTrue(loaded.success, loaded.message)
+        self.assertEqual(client.get_configuration(timeout=10)["restitution"], 0.9)
+        self.assertEqual(rospy.get_param(NODE + "/restitution"), 0.9)
         client.update_configuration({"restitution": 0.5})
 
     def test_6_diagnostics_and_odometry(self):
@@ -185,7 +191,10 @@ class ServicesTest(unittest.TestCase):
         nan = float("nan")
         bad_velocity = self.place(0.03, 0.02, RADIUS, (nan, 0, 0))
         self.assertFalse(bad_velocity.success)
-        self.assertIn("finite", bad_velocity.message)
+        self.assertIn("velocity: not finite", bad_velocity.message)
+        bad_spin = self.place(0.03, 0.02, RADIUS, (0, 0, 0), (0, nan, 0))
+        self.assertFalse(bad_spin.success)
+        self.assertIn("angular_velocity: not finite", bad_spin.message)
         fast = self.place(0.03, 0.02, RADIUS, (1e9, 0, 0))
         self.assertFalse(fast.success)
         self.assertIn("velocity", fast.message)

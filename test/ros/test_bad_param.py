@@ -141,6 +141,14 @@ class BadParamTest(unittest.TestCase):
         self.check_refused("bp_fifteen", ["_marble_radius:=0.015"], "marble_radius",
                            "does not fit the start cell")
 
+    def test_a_lockstep_period_longer_than_a_minute(self):
+        # (Taken in one callback, a period of 1e6 s held the node for minutes.)
+        self.check_refused("bp_twentyone", ["_lockstep:=1000"], "lockstep", "out of range")
+
+    def test_a_misspelt_built_in_maze_lists_the_built_in_ones(self):
+        self.check_refused("bp_twentytwo", ["_maze:=clasic"], "maze", "clasic",
+                           "neither a built-in maze (classic, prototype)")
+
     def test_a_flag_of_the_wrong_type(self):
         self.check_refused("bp_eighteen", ["_clock:=sometimes"], "clock", "true or false")
 

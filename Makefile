@@ -30,7 +30,7 @@ instructions: build
 budgets: build
 	@bash scripts/check_budgets.sh
 
-# The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (a few minutes).
+# The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (under half a minute).
 tradeoff: build
 	@bash scripts/tradeoff.sh
 

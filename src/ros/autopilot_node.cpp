@@ -33,7 +33,10 @@ class AutopilotNode {
   AutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
     rate_ = pnh.param("rate", 55.0);
     max_speed_ = pnh.param("max_speed", 0.1);
-    start_after_ = ros::WallTime::now() + ros::WallDuration(pnh.param("start_delay", 1.0));
+    const double delay = pnh.param("start_delay", 1.0);
+    if (!(delay >= 0 && delay <= 3600))
+      throw std::runtime_error(pnh.resolveName("start_delay") + ": expected 0 to 3600 s");
+    start_after_ = ros::WallTime::now() + ros::WallDuration(delay);
     if (!(rate_ > 0 && rate_ <= 1000))
       throw std::runtime_error(pnh.resolveName("rate") + ": expected 0 < rate <= 1000 Hz");
     if (!(max_speed_ > 0 && max_speed_ <= 10))

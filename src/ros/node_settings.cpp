@@ -70,13 +70,15 @@ bool readFlag(const ros::NodeHandle& pnh, const std::string& key, bool fallback)
 }
 
 const std::set<std::string>& nodeKeys() {
+  // (diagnostic_period is diagnostic_updater's own.)
   static const std::set<std::string> keys = {
       "maze",         "update_rate", "publish_rate",     "marker_rate",      "tilt_timeout",
       "rate_timeout", "auto_reset",  "world_frame",      "board_frame",      "marble_frame",
-      "clock",        "lockstep",    "real_time_factor", "diagnostic_period"};  // diagnostic_updater's
-                                                                                // own
+      "clock",        "lockstep",    "real_time_factor", "diagnostic_period"};
   return keys;
 }
+
+}  // namespace
 
 /// The frames make the chain world -> board -> marble of tf: each named, none twice, none with
 /// the leading '/' tf2 refuses. An empty or repeated frame would flood every tf listener with
@@ -97,8 +99,6 @@ void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& s) {
                                  " too; tf needs world -> board -> marble to be three frames");
   }
 }
-
-}  // namespace
 
 mm::Scene sceneFor(const std::string& maze, const NodeSettings& settings) {
   mm::Scene scene = mm::loadScene(maze);

@@ -35,6 +35,9 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, marble_maze::Scene* scene)
 /// A maze (a built-in name or a file) with the physics of its file and these settings' keys over
 /// it; throws marble_maze::MazeFileError or ParamError.
 marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& settings);
+/// Throws std::runtime_error naming the parameter when the frames do not make the chain
+/// world -> board -> marble: one empty, starting with '/', or named as another.
+void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& settings);
 
 /// Puts every value in force on the parameter server, under the node's private namespace.
 void writeBack(const ros::NodeHandle& pnh, const NodeSettings& settings,

@@ -37,6 +37,7 @@ class ReplayNode {
     settings.world_frame = pnh.param<std::string>("world_frame", settings.world_frame);
     settings.board_frame = pnh.param<std::string>("board_frame", settings.board_frame);
     settings.marble_frame = pnh.param<std::string>("marble_frame", settings.marble_frame);
+    checkFrames(pnh, settings);
     out_ = std::make_unique<marble_maze_ros::StateOutput>(nh, settings);
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     out_->publishScene(replay_->session().simulation(), false);

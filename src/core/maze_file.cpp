@@ -531,7 +531,7 @@ Scene loadScene(const std::string& name_or_path, const Params& defaults) {
     if (maze.first == name_or_path)
       return parseScene(maze.second, "<embedded:" + maze.first + ">", defaults);
   std::error_code error;
-  if (!std::filesystem::exists(name_or_path, error)) {
+  if (!std::filesystem::exists(name_or_path, error) && !error) {  // (else the read says why)
     // A misspelt built-in name reads as a missing file: say what was looked for.
     std::string names;
     for (const std::string& name : embeddedSceneNames())

@@ -79,7 +79,7 @@ void Session::reset() {
 
 void Session::place(const Vec3& position_in_board, const Vec3& velocity, const Vec3& spin) {
   const std::string why = sim_.whyNotPlaceable(position_in_board);
-  if (!why.empty()) throw std::invalid_argument(why);
+  if (!why.empty()) throw std::invalid_argument("position: " + why);
   if (!velocity.allFinite()) throw std::invalid_argument("velocity: not finite");
   if (!spin.allFinite()) throw std::invalid_argument("angular_velocity: not finite");
   const Params& p = sim_.params();

@@ -124,7 +124,7 @@ void Simulation::restore(ByteReader* in) {
 }
 
 std::string Simulation::whyNotPlaceable(const Vec3& position_in_board) const {
-  if (!position_in_board.allFinite()) return "the position is not finite";
+  if (!position_in_board.allFinite()) return "not finite";
   const Vec3 grid = position_in_board + maze_.pivot();
   const Vec3 extent = maze_.extent();
   if (grid.x() < 0 || grid.y() < 0 || grid.x() > extent.x() || grid.y() > extent.y())

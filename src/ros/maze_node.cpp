@@ -28,6 +28,14 @@ std::string text(double value) {
   return out.str();
 }
 
+/// Why steps of `step` seconds cannot make up a lockstep `period` (more of them a command than a
+/// call may take, which would hold the node up), or "".
+std::string whyNotLockstep(double period, double step) {
+  if (!(period / step > kMostStepsPerCall)) return "";
+  return "step: " + text(step) + " s makes ~lockstep's " + text(period) + " s more than " +
+         std::to_string(kMostStepsPerCall) + " steps a command";
+}
+
 }  // namespace
 
 MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
@@ -38,6 +46,8 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   } catch (const mm::ParamError& e) {  // the marble where it cannot be: the key is ours
     throw std::runtime_error(pnh.getNamespace() + "/" + e.what());
   }
+  const std::string why = whyNotLockstep(settings_.lockstep, step());
+  if (!why.empty()) throw std::runtime_error(pnh.getNamespace() + "/" + why);
   maze_text_ = scene.text;
   maze_source_ = scene.source;
   started_ = ros::WallTime::now();
@@ -91,14 +101,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
       mm::getParam(p, "model").c_str(), mm::getParam(p, "integrator").c_str(), p.step, p.substeps,
       mode);
 
-  if (settings_.lockstep > 0 &&
-      std::abs(static_cast<double>(stepsPer(settings_.lockstep)) * p.step - settings_.lockstep) >
-          1e-9 * settings_.lockstep)
-    ROS_WARN(
-        "marble_maze: ~lockstep: %g s is not a whole number of steps of %g s; each command "
-        "advances %llu steps (%g s)",
-        settings_.lockstep, p.step, static_cast<unsigned long long>(stepsPer(settings_.lockstep)),
-        static_cast<double>(stepsPer(settings_.lockstep)) * p.step);
+  warnIfLockstepRounds();
   if (settings_.own_clock || settings_.lockstep > 0) {
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     reanchor(ros::Time(0));  // ROS time is simulated time
@@ -116,6 +119,15 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
 
 ros::Time MazeNode::stampNow() const {
   return clock_.stampOfStep(session_->steps());
+}
+
+void MazeNode::warnIfLockstepRounds() const {
+  const double period = settings_.lockstep, taken = static_cast<double>(stepsPer(period)) * step();
+  if (period > 0 && std::abs(taken - period) > 1e-9 * period)
+    ROS_WARN(
+        "marble_maze: ~lockstep: %g s is not a whole number of steps of %g s; each command "
+        "advances %g s",
+        period, step(), taken);
 }
 
 std::uint64_t MazeNode::stepsPer(double seconds) const {
@@ -285,7 +297,8 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
   const std::uint64_t now = session_->steps();
   if (settings_.lockstep > 0) {
     // A gym-like loop over plain topics: the command acts at once, for one control period.
-    // Paused, it waits for the next step taken (by `step`, or on resume), as on any clock.
+    // Paused, it waits for the step service's next step, as on any clock (or is replaced by the
+    // first command after resume, which acts at the same step).
     session_->command({now, kind, roll, pitch});
     if (!session_->paused()) runSteps(stepsPer(settings_.lockstep));
     publishNow();
@@ -370,6 +383,8 @@ std::string MazeNode::load(const std::string& maze) {
   mm::Scene scene;
   try {
     scene = sceneFor(maze, settings_);
+    const std::string why = whyNotLockstep(settings_.lockstep, scene.params.step);
+    if (!why.empty()) return why;
     session_->load(scene);
   } catch (const mm::MazeFileError& e) {
     return e.what();
@@ -390,6 +405,7 @@ std::string MazeNode::load(const std::string& maze) {
   writeBack(pnh_, settings_, session_->simulation().params());
   publishNow();
   ROS_INFO("marble_maze: loaded maze '%s'", session_->simulation().maze().name().c_str());
+  warnIfLockstepRounds();
   return "";
 }
 
@@ -406,6 +422,8 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
       }
     }
     mm::validate(params);
+    const std::string why = whyNotLockstep(settings_.lockstep, params.step);
+    if (!why.empty()) return why;
     const double per_second = 1.0 / params.step;
     if (settings_.publish_rate > per_second * (1 + 1e-9) ||
         settings_.marker_rate > per_second * (1 + 1e-9))
@@ -436,6 +454,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
   marble_maze::SimInput input;
   input.params = mm::paramsText(session_->simulation().params());
   logInput(marble_maze::SimInput::PARAMS, input);
+  warnIfLockstepRounds();
   return "";
 }
 

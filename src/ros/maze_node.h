@@ -51,6 +51,9 @@ class MazeNode {
   /// An input of a service, at the current step, and the state after it.
   void logInput(std::uint8_t kind, marble_maze::SimInput input = marble_maze::SimInput());
   std::uint64_t stepsPer(double seconds) const;
+  /// Warns when ~lockstep is not a whole number of steps (each command then advances the
+  /// nearest whole number of them).
+  void warnIfLockstepRounds() const;
 
   // Inputs and services.
   /// Queues a command at the step its stamp falls on; returns how long (s) it is held.

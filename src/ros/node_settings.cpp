@@ -135,8 +135,8 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   checkFrames(pnh, s);
   s.own_clock = readFlag(pnh, "clock", s.own_clock);
   s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor, 0.0, 1e6);
-  // (A period is taken in one callback: a minute of steps at the finest step takes well under a
-  // second, a longer one would hold the node up.)
+  // (A period is taken in one callback: a longer one would hold the node up. The node also
+  // bounds its count of steps, whatever the step.)
   s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 60.0);
   if (s.own_clock && s.lockstep > 0)
     throw std::runtime_error(pnh.resolveName("lockstep") + ": a lockstep node owns /clock too; " +

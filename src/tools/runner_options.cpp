@@ -79,46 +79,47 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.check = true;
       continue;
     }
-    static const std::set<std::string> kTakesAValue = {"--maze", "--tilt",     "--tilt-csv",
-                                                       "--set",  "--duration", "--out",
-                                                       "--bag",  "--events",   "--every"};
-    if (!kTakesAValue.count(flag))
-      throw UsageError(flag.rfind("--", 0) == 0
-                           ? "unknown option '" + flag + "' (see simulate --help)"
-                           : flag + ": unknown argument");
-    if (i + 1 >= argc) throw UsageError(flag + ": needs a value");
-    given.insert(flag);
-    const std::string& value = args[++i];
+    // The flag's value, the next argument; a flag known to take one is reported without it.
+    const auto value_of = [&]() -> const std::string& {
+      if (i + 1 >= argc) throw UsageError(flag + ": needs a value");
+      given.insert(flag);
+      return args[++i];
+    };
     if (flag == "--maze") {
-      o.maze = value;
+      o.maze = value_of();
     } else if (flag == "--tilt") {
+      const std::string& value = value_of();
       const auto comma = value.find(',');
       if (comma == std::string::npos)
         throw UsageError("--tilt: expected ROLL,PITCH, got '" + value + "'");
       o.tilt = TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
                             parseDouble("--tilt", value.substr(comma + 1)));
     } else if (flag == "--tilt-csv") {
+      const std::string& value = value_of();
       try {
         o.tilt = TiltSchedule::load(value);
       } catch (const std::runtime_error& e) {
         throw UsageError(std::string("--tilt-csv: ") + e.what());
       }
     } else if (flag == "--set") {
+      const std::string& value = value_of();
       const auto eq = value.find('=');
       if (eq == std::string::npos || eq == 0)
         throw UsageError("--set: expected KEY=VALUE, got '" + value + "'");
       o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
     } else if (flag == "--duration") {
+      const std::string& value = value_of();
       o.duration = parseDouble(flag, value);
       if (!(o.duration >= 0 && o.duration <= 1e6))
         throw UsageError("--duration: expected 0..1e6 seconds, got '" + value + "'");
     } else if (flag == "--out") {
-      o.out = value;
+      o.out = value_of();
     } else if (flag == "--bag") {
-      o.bag = value;
+      o.bag = value_of();
     } else if (flag == "--events") {
-      o.events = value;
+      o.events = value_of();
     } else if (flag == "--every") {
+      const std::string& value = value_of();
       const double n = parseDouble(flag, value);
       // Compared as doubles before any conversion: a cast of a number beyond int is undefined.
       constexpr double kMostEvery = std::numeric_limits<int>::max();
@@ -126,6 +127,10 @@ Options parseOptions(const std::vector<std::string>& args) {
         throw UsageError("--every: expected a whole number from 1 to " +
                          std::to_string(std::numeric_limits<int>::max()) + ", got '" + value + "'");
       o.every = static_cast<int>(n);
+    } else {
+      throw UsageError(flag.rfind("--", 0) == 0
+                           ? "unknown option '" + flag + "' (see simulate --help)"
+                           : flag + ": unknown argument");
     }
   }
   // A recorded session brings its maze, its tilts and its length: a flag that would set them

@@ -42,6 +42,11 @@ const char* phaseName(mm::MarblePhase phase) {
   return "unknown";
 }
 
+/// Where the summary goes: standard error when a CSV is written to standard output.
+std::ostream& summaryStream(const Options& o) {
+  return (o.out == "-" || o.events == "-") ? std::cerr : std::cout;
+}
+
 /// Opens FILE for writing, or standard output for "-"; null when no file was asked for.
 std::ostream* openOutput(const std::string& path, std::unique_ptr<std::ofstream>* holder) {
   if (path.empty()) return nullptr;
@@ -160,7 +165,7 @@ int rerun(const Options& o) {
     if (out && (steps % o.every == 0)) writeRow(*out, sim);
   }
   if (!o.quiet) {
-    std::ostream& s = (o.out == "-") ? std::cerr : std::cout;
+    std::ostream& s = summaryStream(o);
     s << "re-simulated " << steps << " steps of " << o.bag << " from its first snapshot (step "
       << recording.snapshot.step << ")";
     if (o.check) s << "; " << matched << " recorded states compared: all identical";
@@ -193,7 +198,7 @@ int run(const Options& o) {
     if (out && (n % o.every == 0 || n == steps)) writeRow(*out, *sim);
   }
   if (!o.quiet) {
-    std::ostream& s = (o.out == "-") ? std::cerr : std::cout;
+    std::ostream& s = summaryStream(o);
     const mm::Marble& m = sim->marble();
     const mm::Vec3 b = sim->marbleInBoard();
     s << "maze " << sim->maze().name() << ": " << sim->maze().size().x() << " x "

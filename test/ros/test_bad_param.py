@@ -144,6 +144,9 @@ class BadParamTest(unittest.TestCase):
     def test_a_lockstep_period_longer_than_a_minute(self):
         # (Taken in one callback, a period of 1e6 s held the node for minutes.)
         self.check_refused("bp_twentyone", ["_lockstep:=1000"], "lockstep", "out of range")
+        # and one of more steps a command than a call may take
+        self.check_refused("bp_twentythree", ["_lockstep:=60", "_step:=0.000001"], "/step",
+                           "lockstep", "more than 10000000 steps a command")
 
     def test_a_misspelt_built_in_maze_lists_the_built_in_ones(self):
         self.check_refused("bp_twentytwo", ["_maze:=clasic"], "maze", "clasic",

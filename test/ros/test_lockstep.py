@@ -21,7 +21,9 @@ COMMANDS = 200
 
 
 class LockstepTest(unittest.TestCase):
-    def test_each_command_advances_one_period(self):
+    def connect(self):
+        """The states as they come (a list and a condition notified on each), and the tilt
+        publisher, connected to the node."""
         states, arrived = [], threading.Condition()
 
         def on_state(msg):
@@ -35,6 +37,10 @@ class LockstepTest(unittest.TestCase):
         while tilt.get_num_connections() == 0 and time.time() < deadline:
             time.sleep(0.05)
         time.sleep(0.5)
+        return states, arrived, tilt
+
+    def test_each_command_advances_one_period(self):
+        states, arrived, tilt = self.connect()
         begin = time.time()
         for k in range(COMMANDS):
             with arrived:
@@ -51,19 +57,7 @@ class LockstepTest(unittest.TestCase):
               % (COMMANDS, wall, COMMANDS * 20 / wall))
 
     def test_paused_a_command_waits_for_the_next_step_taken(self):
-        states, arrived = [], threading.Condition()
-
-        def on_state(msg):
-            with arrived:
-                states.append(msg)
-                arrived.notify()
-
-        rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1000)
-        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=10)
-        deadline = time.time() + 20
-        while tilt.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.05)
-        time.sleep(0.5)
+        states, arrived, tilt = self.connect()
         rospy.wait_for_service("pause", timeout=20)
         self.assertTrue(rospy.ServiceProxy("pause", Trigger)().success)
         try:

@@ -233,8 +233,11 @@ class RecordReplayTest(unittest.TestCase):
         # chaotic, so such a step can part its path from the recording (identical in most runs,
         # 0.25 m apart in one of four full `make test` runs): it is reported, not asserted; the
         # replay node, which has no such race, is held to every bit above.
+        # The board is compared until the marble first finishes in either run: the reset that
+        # follows levels the board at a time the marble's play decides (seen once: 0.066 rad).
         original = {m.header.stamp: m for m in states(plain)}
-        worst, worst_tilt, compared = 0.0, 0.0, 0
+        worst, worst_tilt, compared, tilts = 0.0, 0.0, 0, 0
+        finished = lambda m: m.in_hole or m.at_goal or m.off_board
         for m in states(out):
             o = original.get(m.header.stamp)
             if o is None:
@@ -242,10 +245,13 @@ class RecordReplayTest(unittest.TestCase):
             compared += 1
             worst = max(worst, math.dist((o.position.x, o.position.y, o.position.z),
                                          (m.position.x, m.position.y, m.position.z)))
-            worst_tilt = max(worst_tilt, abs(o.roll - m.roll), abs(o.pitch - m.pitch))
-        print("plain rosbag play: %d states compared, the board %.3g rad and the marble %.3g m "
-              "apart at most" % (compared, worst_tilt, worst))
+            if tilts == compared - 1 and not (finished(o) or finished(m)):
+                tilts += 1
+                worst_tilt = max(worst_tilt, abs(o.roll - m.roll), abs(o.pitch - m.pitch))
+        print("plain rosbag play: %d states compared, the board (in the first %d) %.3g rad and "
+              "the marble %.3g m apart at most" % (compared, tilts, worst_tilt, worst))
         self.assertGreater(compared, 500)
+        self.assertGreater(tilts, 200)
         self.assertLess(worst_tilt, 0.005)
 
         # Twice in a loop: time jumps back, the node starts over, tf listeners see no error.

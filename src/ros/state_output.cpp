@@ -15,7 +15,9 @@ namespace marble_maze_ros {
 namespace mm = marble_maze;
 
 StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings) : settings_(settings) {
-  state_pub_ = nh.advertise<marble_maze::MarbleState>("marble_state", 10);
+  // Deep enough that a recorder the machine holds up for a moment (two seconds of states at
+  // 50 Hz) loses none: a publisher drops its oldest message past its queue.
+  state_pub_ = nh.advertise<marble_maze::MarbleState>("marble_state", 100);
   odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 10);
   event_pub_ = nh.advertise<marble_maze::MazeEvent>("events", 100);
   maze_pub_ = nh.advertise<marble_maze::MazeDescription>("maze", 1, true);

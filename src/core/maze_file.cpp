@@ -533,11 +533,9 @@ Scene loadScene(const std::string& name_or_path, const Params& defaults) {
   std::error_code error;
   if (!std::filesystem::exists(name_or_path, error) && !error) {  // (else the read says why)
     // A misspelt built-in name reads as a missing file: say what was looked for.
-    std::string names;
-    for (const std::string& name : embeddedSceneNames())
-      names += (names.empty() ? "" : ", ") + name;
-    throw MazeFileError(name_or_path, 0, 0,
-                        "neither a built-in maze (" + names + ") nor a file that exists");
+    throw MazeFileError(
+        name_or_path, 0, 0,
+        "neither a built-in maze (" + joined(embeddedSceneNames()) + ") nor a file that exists");
   }
   return loadSceneFile(name_or_path, defaults);
 }

@@ -56,6 +56,10 @@ std::ostream* openOutput(const std::string& path, std::unique_ptr<std::ofstream>
   return holder->get();
 }
 
+/// The CSVs' first lines (their columns are in --help).
+constexpr const char* kTrajectoryHeader = "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
+constexpr const char* kEventsHeader = "t,kind,i,j,k,speed\n";
+
 void writeRow(std::ostream& out, const mm::Simulation& sim) {
   // Every value in its shortest form that reads back exactly (a position 1 km out keeps its
   // micrometres; bit-exact comparisons need it).
@@ -74,8 +78,6 @@ std::string describe(const mm::Event& e) {
        << e.tile.y() << ',' << e.tile.z() << ',' << mm::exactText(e.speed);
   return text.str();
 }
-
-constexpr const char* kEventsHeader = "t,kind,i,j,k,speed\n";
 
 /// The events' rows in CSV, every number in its shortest form that reads back exactly.
 void writeEvents(std::ostream* out, const std::vector<mm::Event>& events) {
@@ -133,7 +135,7 @@ int rerun(const Options& o) {
   std::ostream* events = openOutput(o.events, &events_file);
   const mm::Simulation& sim = replay->session().simulation();
   if (out) {
-    *out << "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
+    *out << kTrajectoryHeader;
     writeRow(*out, sim);
   }
   if (events) *events << kEventsHeader;
@@ -183,7 +185,7 @@ int run(const Options& o) {
   std::ostream* out = openOutput(o.out, &out_file);
   std::ostream* events = openOutput(o.events, &events_file);
   if (out) {
-    *out << "t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase\n";
+    *out << kTrajectoryHeader;
     writeRow(*out, *sim);
   }
   if (events) *events << kEventsHeader;

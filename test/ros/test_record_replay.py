@@ -123,26 +123,27 @@ class RecordReplayTest(unittest.TestCase):
 
     def test_1_offline_resimulation_is_bit_for_bit(self):
         # (The states are in the world: the marble on the board where it was put.)
-        first = states(self.session)[0].position
+        recorded_states = states(self.session)
+        first = recorded_states[0].position
         self.assertLess(math.dist((first.x, first.y, first.z), BOARD), 0.2)
-        run = subprocess.run([os.path.join(WS, "devel", "lib", "marble_maze", "simulate"), "--bag",
-                              self.session, "--check"], capture_output=True, text=True, timeout=120)
+        simulate = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
+        run = subprocess.run([simulate, "--bag", self.session, "--check"], capture_output=True,
+                             text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
         compared = int(run.stdout.split("; ")[1].split()[0])
         self.assertGreater(compared, 400)
         # Its events, from the snapshot it starts at (the first that holds every recorded input)
         # to the last state or input recorded, are the recorded ones, each number exact.
-        run = subprocess.run([os.path.join(WS, "devel", "lib", "marble_maze", "simulate"), "--bag",
-                              self.session, "--events", "-", "--quiet"], capture_output=True,
-                             text=True, timeout=120)
+        run = subprocess.run([simulate, "--bag", self.session, "--events", "-", "--quiet"],
+                             capture_output=True, text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stderr)
         rows = run.stdout.splitlines()
         self.assertEqual(rows[0], "t,kind,i,j,k,speed")
         kinds = {"collision": 0, "hole": 1, "goal": 2, "off_board": 3}
         again = [(kinds[kind], int(i), int(j), int(k), float(speed))
                  for _, kind, i, j, k, speed in (row.split(",") for row in rows[1:])]
-        end = max(m.header.stamp for m in states(self.session) + inputs(self.session))
+        end = max(m.header.stamp for m in recorded_states + inputs(self.session))
         recorded = [(m.kind, m.tile_x, m.tile_y, m.tile_z, m.impact_speed)
                     for _, m, _ in rosbag.Bag(self.session).read_messages(topics=["events"])
                     if m.header.stamp <= end]
@@ -238,6 +239,7 @@ class RecordReplayTest(unittest.TestCase):
         original = {m.header.stamp: m for m in states(plain)}
         worst, worst_tilt, compared, tilts = 0.0, 0.0, 0, 0
         finished = lambda m: m.in_hole or m.at_goal or m.off_board
+        before_a_finish = True
         for m in states(out):
             o = original.get(m.header.stamp)
             if o is None:
@@ -245,7 +247,8 @@ class RecordReplayTest(unittest.TestCase):
             compared += 1
             worst = max(worst, math.dist((o.position.x, o.position.y, o.position.z),
                                          (m.position.x, m.position.y, m.position.z)))
-            if tilts == compared - 1 and not (finished(o) or finished(m)):
+            before_a_finish = before_a_finish and not (finished(o) or finished(m))
+            if before_a_finish:
                 tilts += 1
                 worst_tilt = max(worst_tilt, abs(o.roll - m.roll), abs(o.pitch - m.pitch))
         print("plain rosbag play: %d states compared, the board (in the first %d) %.3g rad and "

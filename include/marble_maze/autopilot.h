@@ -16,12 +16,26 @@ struct AutopilotSettings {
   double braking = 0.3;         ///< share of the largest acceleration used to slow before turns
   double response_time = 0.12;  ///< s: how fast the velocity error is corrected
   double hole_margin = 3.0;     ///< marble radii: keep this far from holes where there is room
+  /// s: how long a new tilt takes to act on the marble (about the board's response time). The
+  /// autopilot steers the marble from where it will be by then: steering it from where it was
+  /// corrects too late, and with some 20 ms more of latency in the loop it overshoots, winds
+  /// about its route or falls into a hole.
+  double lead = 0.05;
 };
 
 /// Roll and pitch (rad) for the board.
 struct Tilt {
   double roll = 0;
   double pitch = 0;
+};
+
+/// What the autopilot sees of the game: the marble's board-frame position and velocity, the
+/// board's tilt, and how long ago they were measured (s): a message's age when it is read.
+struct Observation {
+  Vec2 position = Vec2::Zero();
+  Vec2 velocity = Vec2::Zero();
+  Tilt tilt;
+  double age = 0;
 };
 
 class Autopilot {
@@ -34,13 +48,17 @@ class Autopilot {
   /// The waypoint it steers for now.
   std::size_t next() const { return next_; }
 
-  /// The tilt to aim the board at, from the marble's board-frame position and velocity. Plans
-  /// again when the marble has left its route (a bounce into another column).
-  Tilt steer(const Vec2& position, const Vec2& velocity);
+  /// The tilt to aim the board at. The route is followed from where the marble was seen, and
+  /// planned again when it has left it (a bounce into another column); the speed along it is
+  /// controlled from where the marble will be when the tilt acts (`lead` plus the observation's
+  /// age later, rolling down the board's slope as it is tilted now).
+  Tilt steer(const Observation& seen);
 
  private:
   bool onRoute(const Vec2& position) const;
   double distanceToTurn(const Vec2& position) const;
+  /// The marble's board-frame acceleration down the slope of a board tilted so, walls aside.
+  Vec2 accelerationAt(const Tilt& tilt) const;
 
   double radius_;
   AutopilotSettings settings_;

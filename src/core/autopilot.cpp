@@ -4,6 +4,13 @@
 #include <cmath>
 
 namespace marble_maze {
+namespace {
+
+// An observation older than this (s) is predicted from as if it were this old: a stalled message
+// is not extrapolated into nonsense.
+constexpr double kLongestAge = 0.25;
+
+}  // namespace
 
 Autopilot::Autopilot(const Maze& maze, double marble_radius, const AutopilotSettings& settings)
     : radius_(marble_radius),
@@ -39,7 +46,14 @@ double Autopilot::distanceToTurn(const Vec2& position) const {
   return distance;
 }
 
-Tilt Autopilot::steer(const Vec2& position, const Vec2& velocity) {
+Vec2 Autopilot::accelerationAt(const Tilt& tilt) const {
+  // a = k sin(tilt) down the slope: positive pitch lowers +x, positive roll raises +y.
+  const double k = settings_.acceleration_per_tilt;
+  return Vec2(k * std::sin(tilt.pitch), -k * std::sin(tilt.roll));
+}
+
+Tilt Autopilot::steer(const Observation& seen) {
+  const Vec2& position = seen.position;
   if (!route_.found() || !onRoute(position)) {
     if (!plan(position)) return Tilt();
   }
@@ -50,15 +64,20 @@ Tilt Autopilot::steer(const Vec2& position, const Vec2& velocity) {
   for (std::size_t k = next_; k < std::min(w.size(), next_ + 3); ++k)
     if ((w[k] - position).norm() < reach) next_ = std::min(k + 1, w.size() - 1);
 
+  // Where the marble will be, and how fast, when the tilt acts.
+  const double ahead = settings_.lead + std::clamp(seen.age, 0.0, kLongestAge);
+  const Vec2 slope = accelerationAt(seen.tilt);
+  const Vec2 then = position + ahead * (seen.velocity + 0.5 * ahead * slope);
+  const Vec2 velocity = seen.velocity + ahead * slope;
+
   const double largest = settings_.acceleration_per_tilt * std::sin(settings_.tilt_limit);
   // As fast as allows stopping at the next turn (or the goal) with the braking share.
   const double brake = settings_.braking * largest;
-  const double speed =
-      std::min(settings_.max_speed, std::sqrt(2 * brake * distanceToTurn(position)));
-  const Vec2 to = w[next_] - position;
+  const double speed = std::min(settings_.max_speed, std::sqrt(2 * brake * distanceToTurn(then)));
+  const Vec2 to = w[next_] - then;
   const Vec2 wanted = to.norm() > 0 ? Vec2(speed * to.normalized()) : Vec2::Zero();
   Vec2 accel = (wanted - velocity) / settings_.response_time;
-  // a = k sin(tilt) down the slope: positive pitch lowers +x, positive roll raises +y.
+  // The tilt that gives that acceleration (accelerationAt's inverse).
   const auto angle = [&](double a) {
     return std::asin(std::clamp(a / settings_.acceleration_per_tilt, -1.0, 1.0));
   };

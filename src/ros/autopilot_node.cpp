@@ -62,6 +62,7 @@ class AutopilotNode {
     settings.acceleration_per_tilt =
         (scene_.params.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0) * scene_.params.gravity;
     settings.max_speed = max_speed_;
+    settings.lead = scene_.params.tilt_response_time;
     pilot_ = std::make_unique<mm::Autopilot>(scene_.maze, scene_.params.marble_radius, settings);
     board_frame_ = msg->header.frame_id;
     playing_ = false;
@@ -81,13 +82,18 @@ class AutopilotNode {
       return;
     }
     if (stuck_) return;
-    const mm::Vec2 position(s.position_in_board.x, s.position_in_board.y);
-    if (!playing_ && !start(s, position)) return;
+    mm::Observation seen;
+    seen.position = mm::Vec2(s.position_in_board.x, s.position_in_board.y);
+    if (!playing_ && !start(s, seen.position)) return;
     // The velocity in the board frame: the world's, turned back by the board's tilt.
     const mm::Vec3 velocity = mm::Board::rotationFor(s.roll, s.pitch).transpose() *
                               mm::Vec3(s.velocity.x, s.velocity.y, s.velocity.z);
+    seen.velocity = velocity.head<2>();
+    seen.tilt = {s.roll, s.pitch};
+    // How old the state is: on a busy machine a period or more, which the steering allows for.
+    seen.age = (ros::Time::now() - s.header.stamp).toSec();
     const std::size_t waypoints = pilot_->route().waypoints.size();
-    const mm::Tilt tilt = pilot_->steer(position, velocity.head<2>());
+    const mm::Tilt tilt = pilot_->steer(seen);
     if (pilot_->route().waypoints.size() != waypoints) publishRoute();  // planned again
     publishTilt(tilt.roll, tilt.pitch);
   }

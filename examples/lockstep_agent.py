@@ -31,6 +31,9 @@ def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
             tilt.publish(command)
             lock.wait_for(lambda: state[0] is not None, timeout=5.0)
             s = state[0]
+        if s is None:
+            raise RuntimeError("no marble_state within 5 s of a tilt command: is the node "
+                               "running, with ~lockstep?")
         ax = gain[0] * (x - s.position_in_board.x) - gain[1] * s.velocity.x
         ay = gain[0] * (y - s.position_in_board.y) - gain[1] * s.velocity.y
         command = BoardTilt(pitch=math.asin(max(-0.17, min(0.17, ax / 7.0))),

@@ -18,6 +18,9 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   const double factor = wall > 0 ? (now_.simulated_time - before_.simulated_time) / wall : 0;
   const double command_rate = wall > 0 ? (now_.commands - before_.commands) / wall : 0;
   const std::uint64_t skipped = now_.skipped_steps - before_.skipped_steps;
+  const double aimed = !now_.follows_ros_time ? now_.aimed_factor
+                       : wall > 0             ? (now_.ros_time - before_.ros_time) / wall
+                                              : 1;
 
   using Level = diagnostic_msgs::DiagnosticStatus;
   if (now_.paused)
@@ -25,16 +28,16 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   else if (skipped > 0)
     status.summaryf(Level::WARN, "fell behind: skipped %llu steps to catch up",
                     static_cast<unsigned long long>(skipped));
-  else if (!now_.lockstep && now_.aimed_factor > 0 && factor < 0.9 * now_.aimed_factor)
+  else if (!now_.lockstep && aimed > 0 && factor < 0.9 * aimed)
     status.summaryf(Level::WARN, "running at %.2f times real time, below the %.2f aimed at", factor,
-                    now_.aimed_factor);
+                    aimed);
   else if (now_.queued > 1000)
     status.summaryf(Level::WARN, "%zu tilt commands wait for their step (stamped far ahead?)",
                     now_.queued);
   else
     status.summary(Level::OK, "running");
   status.add("real-time factor", factor);
-  status.add("real-time factor aimed at (0: as fast as it can)", now_.aimed_factor);
+  status.add("real-time factor aimed at (0: as fast as it can)", aimed);
   status.add("steps skipped to catch up (last period)", skipped);
   status.add("tilt commands per second", command_rate);
   status.add("seconds since the last tilt command", now_.since_command);

@@ -14,8 +14,12 @@ namespace marble_maze_ros {
 
 /// What the node measures, as it stands now.
 struct HealthFigures {
-  double simulated_time = 0;        ///< s since the start
-  double aimed_factor = 1;          ///< times real time aimed at; 0 = as fast as it can
+  double simulated_time = 0;  ///< s since the start
+  double aimed_factor = 1;    ///< times real time aimed at; 0 = as fast as it can
+  /// Following ROS time: the factor aimed at is ROS time's own against wall time (1, or what
+  /// a /clock from `rosbag play -r` or a stopped one gives), measured, not aimed_factor.
+  bool follows_ros_time = false;
+  double ros_time = 0;              ///< s, ROS time now
   std::uint64_t skipped_steps = 0;  ///< steps skipped to catch up since the start
   std::uint64_t commands = 0;       ///< tilt commands received since the start
   double since_command = -1;        ///< s of ROS time since the last command; -1 none yet

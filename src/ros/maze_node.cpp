@@ -24,7 +24,7 @@ constexpr std::uint32_t kMostStepsPerCall = 10000000;
 
 std::string text(double value) {
   std::ostringstream out;
-  out << std::setprecision(17) << value;
+  out << std::setprecision(15) << value;  // what a user typed, without binary noise
   return out.str();
 }
 
@@ -36,9 +36,24 @@ std::string whyNotLockstep(double period, double step) {
          std::to_string(kMostStepsPerCall) + " steps a command";
 }
 
+/// Why the node cannot run at a new `step` (a maze loaded, a value changed live), as it could not
+/// start at it: too long a lockstep period, or fewer steps a second than a rate of messages of
+/// simulated time asks for. "" when it can.
+std::string whyNotStep(const NodeSettings& settings, double step) {
+  const std::string why = whyNotLockstep(settings.lockstep, step);
+  if (!why.empty()) return why;
+  const double per_second = 1.0 / step;
+  if (settings.publish_rate > per_second * (1 + 1e-9) ||
+      settings.marker_rate > per_second * (1 + 1e-9))
+    return "step: " + text(step) + " s makes fewer steps a second than ~publish_rate or " +
+           "~marker_rate asks for";
+  return "";
+}
+
 }  // namespace
 
 MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
+  any_given_ = ros::param::get(pnh.getNamespace(), given_);
   mm::Scene scene;
   settings_ = readSettings(pnh, &scene);
   try {
@@ -113,6 +128,11 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   } else if (settings_.lockstep <= 0) {
     timer_ = nh.createTimer(ros::Duration(1.0 / settings_.update_rate), &MazeNode::onTimer, this);
   }
+}
+
+MazeNode::~MazeNode() {
+  ros::param::del(pnh_.getNamespace());
+  if (any_given_) ros::param::set(pnh_.getNamespace(), given_);
 }
 
 // --- Time ----------------------------------------------------------------------------------------
@@ -280,6 +300,8 @@ void MazeNode::updateHealth() {
   f.aimed_factor = settings_.own_clock      ? settings_.real_time_factor
                    : settings_.lockstep > 0 ? 0
                                             : 1;
+  f.follows_ros_time = !settings_.own_clock && settings_.lockstep <= 0;
+  f.ros_time = ros::Time::now().toSec();
   f.skipped_steps = skipped_steps_;
   f.commands = input_->received();
   f.since_command = input_->last().isZero() ? -1 : (ros::Time::now() - input_->last()).toSec();
@@ -383,9 +405,11 @@ std::string MazeNode::load(const std::string& maze) {
   mm::Scene scene;
   try {
     scene = sceneFor(maze, settings_);
-    const std::string why = whyNotLockstep(settings_.lockstep, scene.params.step);
+    const std::string why = whyNotStep(settings_, scene.params.step);
     if (!why.empty()) return why;
+    const ros::Time stamp = stampNow();
     session_->load(scene);
+    if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length
   } catch (const mm::MazeFileError& e) {
     return e.what();
   } catch (const mm::ParamError& e) {
@@ -422,13 +446,8 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
       }
     }
     mm::validate(params);
-    const std::string why = whyNotLockstep(settings_.lockstep, params.step);
+    const std::string why = whyNotStep(settings_, params.step);
     if (!why.empty()) return why;
-    const double per_second = 1.0 / params.step;
-    if (settings_.publish_rate > per_second * (1 + 1e-9) ||
-        settings_.marker_rate > per_second * (1 + 1e-9))
-      return "step: " + text(params.step) + " s makes fewer steps a second than ~publish_rate or " +
-             "~marker_rate asks for";
     const ros::Time stamp = stampNow();
     session_->setParams(params);
     if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length

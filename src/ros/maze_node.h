@@ -32,6 +32,11 @@ class MazeNode {
  public:
   /// Reads the parameters and starts; throws std::runtime_error naming a bad parameter.
   MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Leaves the private parameters as they were given: the values written back go, so that a
+  /// node started later on the same master (rosrun) does not take them for its user's.
+  ~MazeNode();
+  MazeNode(const MazeNode&) = delete;
+  MazeNode& operator=(const MazeNode&) = delete;
 
  private:
   // Time.
@@ -70,6 +75,8 @@ class MazeNode {
   std::string valueOf(const std::string& key) const;
 
   ros::NodeHandle pnh_;
+  XmlRpc::XmlRpcValue given_;  // the private parameters as given, before any was written back
+  bool any_given_ = false;
   NodeSettings settings_;
   std::unique_ptr<marble_maze::Session> session_;
   SimClock clock_;

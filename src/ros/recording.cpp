@@ -41,21 +41,33 @@ Recording readRecording(const std::string& path) {
       throw std::runtime_error(path + ": inputs " + std::to_string(r.inputs[k - 1].index + 1) +
                                " to " + std::to_string(r.inputs[k].index - 1) + " are missing");
   // A recorder that started late missed the inputs made before it subscribed: the replay starts
-  // from the first snapshot that holds them all, with the scene recorded before it.
+  // from the first snapshot that holds them all and has a scene recorded before it. (Two latched
+  // messages of one instant, the scene and the first snapshot of a lockstep node, come in either
+  // order: then the next snapshot is the first.)
   const std::uint64_t first_input = r.inputs.empty() ? 0 : r.inputs.front().index;
+  const std::size_t first_scene_before = scenes.empty() ? snapshots.size() : scene_after.front();
   std::size_t chosen = snapshots.size();
-  for (std::size_t k = 0; k < snapshots.size() && chosen == snapshots.size(); ++k)
+  for (std::size_t k = first_scene_before; k < snapshots.size() && chosen == snapshots.size(); ++k)
     if (snapshots[k].inputs >= first_input) chosen = k;
-  if (chosen == snapshots.size())
+  if (chosen == snapshots.size()) {
+    if (scenes.empty() || snapshots.empty() || first_scene_before >= snapshots.size())
+      throw std::runtime_error(path + ": no marble_maze/SceneDescription (scene) followed by " +
+                               "a marble_maze/SimSnapshot (snapshot)");
     throw std::runtime_error(path +
                              ": no marble_maze/SimSnapshot (snapshot) that the recorded "
                              "inputs follow on from");
+  }
   std::size_t scene = scenes.size();
   for (std::size_t k = 0; k < scenes.size(); ++k)
     if (scene_after[k] <= chosen) scene = k;
-  if (scene == scenes.size())
-    throw std::runtime_error(path +
-                             ": no marble_maze/SceneDescription (scene) before the snapshot");
+  // Inputs were made after the snapshot (later snapshots count them) but none was recorded: the
+  // replay would play the session without its tilts.
+  std::uint64_t counted = 0;
+  for (const auto& snapshot : snapshots) counted = std::max(counted, snapshot.inputs);
+  if (r.inputs.empty() && counted > snapshots[chosen].inputs)
+    throw std::runtime_error(path + ": no marble_maze/SimInput (inputs), though its snapshots " +
+                             "count " + std::to_string(counted - snapshots[chosen].inputs) +
+                             " made: a replay needs the session's inputs recorded");
   r.scene = scenes[scene];
   r.snapshot = snapshots[chosen];
   const std::uint64_t held = r.snapshot.inputs;
@@ -86,12 +98,46 @@ Replayer::Replayer(const Recording& recording, const Overrides& overrides)
   session_->restore(recording.snapshot.state);
   clock_.anchor(recording.snapshot.anchor_stamp, recording.snapshot.anchor_step,
                 recording.snapshot.anchor_time, stepNs());
+  scheduleInputs();
+}
+
+void Replayer::scheduleInputs() {
+  // Each input acts at the simulated time it acted at in the session: at its own step while the
+  // replay's step is the session's, and at the first step at or after that time under another
+  // (--set step=...). The time runs on in stretches of one step length, each begun at a load or
+  // a reconfigure, in the session and in the replay alike.
+  const auto& inputs = recording_.inputs;
+  due_.resize(inputs.size());
+  std::uint64_t recorded_from = session_->steps(), replayed_from = session_->steps();
+  double recorded_step = mm::paramsFromText(recording_.snapshot.params).step;
+  double replayed_step = session_->simulation().params().step;
+  double recorded_at = 0, replayed_at = 0;  // s of simulated time since the snapshot
+  std::uint64_t earliest = replayed_from;   // inputs stay in their order
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const mm::SimInput& in = inputs[i];
+    const std::uint64_t since = in.step > recorded_from ? in.step - recorded_from : 0;
+    const double at = recorded_at + static_cast<double>(since) * recorded_step;
+    std::uint64_t due = replayed_from + since;  // the same step length: the same step
+    if (replayed_step != recorded_step || replayed_from != recorded_from) {
+      const double steps = std::ceil((at - replayed_at) / replayed_step - 1e-9);
+      due = replayed_from + static_cast<std::uint64_t>(std::max(0.0, steps));
+    }
+    due_[i] = earliest = std::max(earliest, due);
+    if (in.kind == mm::SimInput::LOAD || in.kind == mm::SimInput::PARAMS) {
+      replayed_at += static_cast<double>(due_[i] - replayed_from) * replayed_step;
+      recorded_at = at;
+      recorded_from = in.step;
+      replayed_from = due_[i];
+      recorded_step = mm::paramsFromText(in.params).step;
+      replayed_step = paramsOf(in.params).step;
+    }
+  }
 }
 
 std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
   std::vector<const marble_maze::SimInput*> applied;
   const auto& inputs = recording_.inputs;
-  while (next_ < inputs.size() && inputs[next_].step <= session_->steps()) {
+  while (next_ < inputs.size() && due_[next_] <= session_->steps()) {
     const marble_maze::SimInput& in = inputs[next_++];
     using K = marble_maze::SimInput;
     switch (in.kind) {
@@ -120,13 +166,15 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
         mm::Scene scene = mm::parseScene(in.maze_text, in.maze_source);
         scene.params = paramsOf(in.params);
         session_->load(scene);
+        followStep();
         break;
       }
       case K::PARAMS:
         session_->setParams(paramsOf(in.params));
+        followStep();
         break;
       case K::ANCHOR:
-        clock_.anchor(in.anchor_stamp, in.step, in.anchor_time, stepNs());
+        clock_.anchor(in.anchor_stamp, session_->steps(), in.anchor_time, stepNs());
         break;
       default:
         throw std::runtime_error("inputs: unknown kind " + std::to_string(in.kind));
@@ -134,6 +182,13 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
     applied.push_back(&in);
   }
   return applied;
+}
+
+void Replayer::followStep() {
+  // As the node does: a new step length ties the steps to ROS time anew where they stand (the
+  // node's ANCHOR input at this step came before the change, with the old length).
+  if (clock_.stepNs() != stepNs())
+    clock_.anchor(stamp(), session_->steps(), session_->simulation().time(), stepNs());
 }
 
 ros::Time Replayer::end() const {

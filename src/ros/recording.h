@@ -1,8 +1,9 @@
 // A recorded session, as a bag holds it (record.launch), and its re-simulation: the session
 // restored from the bag's first snapshot, every later input applied at the step it took effect
-// at, and the clock anchored where the original's was, so that each step carries the original's
-// stamp. Shared by the node's replay (~bag) and `simulate --bag`; reads bags with rosbag's C++
-// API, with no ROS master.
+// at (under another step length, at the first step at or after its simulated time), and the
+// clock anchored where the original's was, so that each step carries the original's stamp. Shared
+// by the node's replay (~bag) and `simulate --bag`; reads bags with rosbag's C++ API, with no ROS
+// master.
 #pragma once
 
 #include <cmath>
@@ -53,12 +54,17 @@ class Replayer {
 
  private:
   marble_maze::Params paramsOf(const std::string& text) const;
+  /// After a load or a reconfigure: the clock goes on at the step length now in force.
+  void followStep();
+  /// Works out the step of the replay at which each input acts (due_).
+  void scheduleInputs();
 
   const Recording& recording_;
   Overrides overrides_;
   std::unique_ptr<marble_maze::Session> session_;
   SimClock clock_;
-  std::size_t next_ = 0;  // the next input to apply
+  std::vector<std::uint64_t> due_;  // the step of the replay each input acts before
+  std::size_t next_ = 0;            // the next input to apply
 };
 
 }  // namespace marble_maze_ros

@@ -90,7 +90,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     } else if (flag == "--tilt") {
       const std::string& value = value_of();
       const auto comma = value.find(',');
-      if (comma == std::string::npos)
+      if (comma == std::string::npos || value.find(',', comma + 1) != std::string::npos)
         throw UsageError("--tilt: expected ROLL,PITCH, got '" + value + "'");
       o.tilt = TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
                             parseDouble("--tilt", value.substr(comma + 1)));
@@ -133,6 +133,10 @@ Options parseOptions(const std::vector<std::string>& args) {
                            : flag + ": unknown argument");
     }
   }
+  // Two CSVs in one file, or both on standard output, would be one garbled CSV.
+  if (!o.out.empty() && o.out == o.events)
+    throw UsageError("--events: '" + o.events + "' is --out's too; the trajectory and the " +
+                     "events need a file each");
   // A recorded session brings its maze, its tilts and its length: a flag that would set them
   // again is refused rather than ignored.
   if (!o.bag.empty())

@@ -166,6 +166,12 @@ int rerun(const Options& o) {
     ++steps;
     if (out && (steps % o.every == 0)) writeRow(*out, sim);
   }
+  if (out && steps % o.every != 0) writeRow(*out, sim);  // the last step, as a run writes it
+  if (o.check && matched == 0) {
+    std::cerr << "simulate: --check: " << o.bag
+              << " holds no marble_state of the re-simulated steps: nothing to compare\n";
+    return 1;
+  }
   if (!o.quiet) {
     std::ostream& s = summaryStream(o);
     s << "re-simulated " << steps << " steps of " << o.bag << " from its first snapshot (step "

@@ -120,6 +120,10 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--bag session.bag --maze classic", "--maze: not with --bag, whose session sets it"},
       {"--tilt 0,0 --bag session.bag", "--tilt: not with --bag"},
       {"--bag session.bag --duration 3", "--duration: not with --bag"},
+      // Two CSVs in one file would garble both; a third tilt value is not silently dropped.
+      {"--out t.csv --events t.csv", "--events: 't.csv' is --out's too"},
+      {"--out - --events -", "--events: '-' is --out's too"},
+      {"--tilt 0.1,0.1,0.1", "--tilt: expected ROLL,PITCH, got '0.1,0.1,0.1'"},
   };
   for (const auto& [args, message] : cases) {
     const Result r = runSimulate(args);

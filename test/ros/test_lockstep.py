@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """rostest of ~lockstep (run by lockstep.test, control period 0.02 s): each tilt command is
 answered by a marble_state exactly one control period (20 steps) later in simulated time, with
-the command in force; paused, a command waits for the next step taken; and the example agent (examples/lockstep_agent.py) brings the marble within
-5 mm of its point, printing the steps per second of wall time it reaches."""
+the command in force; a reset between commands is shown at once, at the stamp of the state
+before it; paused, a command waits for the next step taken; and the example agent
+(examples/lockstep_agent.py) brings the marble within 5 mm of its point, printing the steps per
+second of wall time it reaches."""
 import importlib.util
 import os
 import threading
@@ -55,6 +57,25 @@ class LockstepTest(unittest.TestCase):
         self.assertAlmostEqual(states[-1].pitch, 0.05, delta=1e-9)  # the command in force
         print("lockstep: %d commands in %.2f s of wall time: %.0f steps per second"
               % (COMMANDS, wall, COMMANDS * 20 / wall))
+
+    def test_a_reset_is_shown_at_once_at_the_same_stamp(self):
+        states, arrived, tilt = self.connect()
+        with arrived:
+            before = len(states)
+            tilt.publish(BoardTilt(roll=0.0, pitch=0.08))
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
+            moved = states[-1]
+        rospy.wait_for_service("reset", timeout=20)
+        with arrived:
+            before = len(states)
+            self.assertTrue(rospy.ServiceProxy("reset", Trigger)().success)
+            # No command since: time has not moved, and the reset state comes all the same.
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5),
+                            "no state after the reset")
+            shown = states[-1]
+        self.assertEqual(shown.header.stamp, moved.header.stamp)
+        self.assertEqual((shown.roll, shown.pitch), (0.0, 0.0))  # the board back level
+        self.assertNotEqual(moved.pitch, 0.0)
 
     def test_paused_a_command_waits_for_the_next_step_taken(self):
         states, arrived, tilt = self.connect()

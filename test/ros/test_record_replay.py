@@ -11,7 +11,10 @@ rosbag play), each on a master of its own:
   4. record a session from the node's start, play its tilt commands with plain
      `rosbag play --clock` into a fresh node: within 1 mm of the original over the whole run;
   5. play that bag twice in a loop (-l): the node starts over when time jumps back, and a tf
-     listener sees no TF_REPEATED_DATA or TF_OLD_DATA.
+     listener sees no TF_REPEATED_DATA or TF_OLD_DATA;
+  6. re-simulate the first at half the step: each input acts at its recorded simulated time;
+     a bag without the states fails --check, one without the inputs is refused;
+  7. the node, stopped, leaves on the parameter server only the parameters it was given.
 
 Plain unittest in the workspace given by MARBLE_MAZE_WS: python3 test/ros/test_record_replay.py;
 with --gtest_output=xml:FILE it writes JUnit XML for catkin. About 2 minutes.
@@ -114,6 +117,8 @@ class RecordReplayTest(unittest.TestCase):
             master.run(["rosservice", "call", "/resume"])
             time.sleep(7)
             master.stop(launch)
+            # What the node left on the parameter server when it stopped.
+            cls.left = master.run(["rosparam", "list", "/marble_maze"]).stdout.split()
         finally:
             master.close()
 
@@ -149,6 +154,64 @@ class RecordReplayTest(unittest.TestCase):
                     if m.header.stamp <= end]
         self.assertGreater(len(again), 100)
         self.assertEqual(recorded[len(recorded) - len(again):], again)
+
+    def test_6_another_step_keeps_the_recorded_times_and_a_bag_lacking_a_topic_is_refused(self):
+        simulate = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
+
+        def board(*flags):
+            """(t, roll, pitch) of each row of a re-simulation, and when its marble first
+            finished (the session then levels the board whatever the inputs say)."""
+            events = os.path.join(self.dir, "events.csv")
+            run = subprocess.run([simulate, "--bag", self.session, "--out", "-", "--quiet",
+                                  "--events", events] + list(flags),
+                                 capture_output=True, text=True, timeout=120)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            rows = [row.split(",") for row in run.stdout.splitlines()[1:]]
+            with open(events) as f:
+                ends = [float(e.split(",")[0]) for e in f.read().splitlines()[1:]
+                        if e.split(",")[1] != "collision"]
+            return ({round(float(r[0]), 6): (float(r[10]), float(r[11])) for r in rows},
+                    min(ends, default=math.inf))
+
+        # Under half the step each input acts at its recorded simulated time: the board tilts as
+        # it did (its servo's lag is exact at any step; 1e-3 rad allows its rate limit's
+        # rounding) until the marble, which goes its own way, first finishes in either run.
+        # (Each input used to act at its step number, at half its time.)
+        (recorded, finish), (halved, finish_halved) = board(), board("--set", "step=0.0005")
+        common = [t for t in sorted(set(recorded) & set(halved))
+                  if t < min(finish, finish_halved)]
+        self.assertGreater(common[-1] - common[0], 3)
+        worst = max(max(abs(a - b) for a, b in zip(recorded[t], halved[t])) for t in common)
+        self.assertLess(worst, 1e-3)
+        self.assertGreater(max(abs(r) for t in common for r in recorded[t]),
+                           0.01)  # the board tilts: the comparison means something
+        # A bag without the states: --check has nothing to compare, and says so.
+        no_states = os.path.join(self.dir, "no_states.bag")
+        no_inputs = os.path.join(self.dir, "no_inputs.bag")
+        with rosbag.Bag(self.session) as bag, rosbag.Bag(no_states, "w") as a, \
+                rosbag.Bag(no_inputs, "w") as b:
+            for topic, m, t in bag.read_messages():
+                if m._type != "marble_maze/MarbleState":
+                    a.write(topic, m, t)
+                if m._type != "marble_maze/SimInput":
+                    b.write(topic, m, t)
+        run = subprocess.run([simulate, "--bag", no_states, "--check"], capture_output=True,
+                             text=True, timeout=120)
+        self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
+        self.assertIn("holds no marble_state", run.stderr)
+        run = subprocess.run([simulate, "--bag", no_inputs], capture_output=True, text=True,
+                             timeout=120)
+        self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
+        self.assertIn("no marble_maze/SimInput (inputs)", run.stderr)
+
+    def test_7_the_node_leaves_its_parameters_as_they_were_given(self):
+        # The values it wrote back while running (every key in force) go when it stops, so that
+        # a node started later on this master does not take them (another maze's physics, say)
+        # for its user's; those it was given stay.
+        self.assertIn("/marble_maze/board_position", self.left)
+        self.assertIn("/marble_maze/maze", self.left)  # record.launch's, through sim.launch
+        self.assertNotIn("/marble_maze/step", self.left)
+        self.assertNotIn("/marble_maze/restitution", self.left)
 
     def replay(self, rate):
         out = os.path.join(self.dir, "replay_%g.bag" % rate)

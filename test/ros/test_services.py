@@ -7,7 +7,8 @@
     step calls gives bit-identical states;
   - place_marble: refused inside a tile and off the board, the marble staying where it was;
   - load_maze: refused for a missing and a malformed file (file:line:col), the old maze still
-    running; a built-in maze loads, `maze` and the markers follow;
+    running; a built-in maze loads, `maze` and the markers follow; a maze with 5 ms steps runs
+    at real time, one with steps longer than ~publish_rate allows is refused;
   - dynamic_reconfigure: restitution 0.9 acts on the next bounce as eq. (1) says (the upward
     speed after it is 0.9 times the approach, less the gravity since, within 1e-6 m/s); a bad
     value is refused and nothing changes; the values in force are on the parameter server, and
@@ -153,6 +154,39 @@ class ServicesTest(unittest.TestCase):
         self.assertEqual(rospy.get_param(NODE + "/maze"), "prototype")
         back = call("load_maze", LoadMaze, rospy.get_param("~maze"))
         self.assertTrue(back.success, back.message)
+
+    def test_4b_a_maze_with_another_step_runs_at_real_time_or_is_refused(self):
+        with open(rospy.get_param("~maze")) as f:
+            room = f.read()
+
+        def with_step(step):
+            with tempfile.NamedTemporaryFile("w", suffix=".yaml", delete=False) as f:
+                f.write(room.replace("\nphysics:\n", "\nphysics:\n  step: %g\n" % step))
+            loaded = call("load_maze", LoadMaze, f.name)
+            os.unlink(f.name)
+            return loaded
+
+        try:
+            # 5 ms steps: still one simulated second a second of ROS time (the steps were tied to
+            # ROS time at the old length: five times real time).
+            loaded = with_step(0.005)
+            self.assertTrue(loaded.success, loaded.message)
+            after = rospy.get_rostime() + rospy.Duration(1.5)
+            status = self.diagnostics.wait(
+                lambda a: a.header.stamp > after and
+                any(kv.key == "real-time factor" for s in a.status for kv in s.values),
+                timeout=10)
+            self.assertIsNotNone(status, "no real-time factor on /diagnostics")
+            factor = next(float(kv.value) for s in status.status for kv in s.values
+                          if kv.key == "real-time factor")
+            self.assertLess(abs(factor - 1), 0.5, factor)
+            # 50 ms steps: fewer than ~publish_rate's 50 a second, refused as at start.
+            refused = with_step(0.05)
+            self.assertFalse(refused.success)
+            self.assertIn("~publish_rate", refused.message)
+        finally:
+            back = call("load_maze", LoadMaze, rospy.get_param("~maze"))
+            self.assertTrue(back.success, back.message)
 
     def test_5_reconfigure_restitution_acts_on_the_next_bounce(self):
         client = Client(NODE, timeout=20)

@@ -23,6 +23,7 @@
 #include "marble_maze/board.h"
 #include "maze_description.h"
 #include "maze_markers.h"
+#include "node_settings.h"
 #include "run_node.h"
 
 namespace {
@@ -31,16 +32,10 @@ namespace mm = marble_maze;
 class AutopilotNode {
  public:
   AutopilotNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
-    rate_ = pnh.param("rate", 55.0);
-    max_speed_ = pnh.param("max_speed", 0.1);
-    const double delay = pnh.param("start_delay", 1.0);
-    if (!(delay >= 0 && delay <= 3600))
-      throw std::runtime_error(pnh.resolveName("start_delay") + ": expected 0 to 3600 s");
+    rate_ = marble_maze_ros::readNumber(pnh, "rate", 55.0, 0.1, 1000);
+    max_speed_ = marble_maze_ros::readNumber(pnh, "max_speed", 0.1, 1e-3, 10);
+    const double delay = marble_maze_ros::readNumber(pnh, "start_delay", 1.0, 0, 3600);
     start_after_ = ros::WallTime::now() + ros::WallDuration(delay);
-    if (!(rate_ > 0 && rate_ <= 1000))
-      throw std::runtime_error(pnh.resolveName("rate") + ": expected 0 < rate <= 1000 Hz");
-    if (!(max_speed_ > 0 && max_speed_ <= 10))
-      throw std::runtime_error(pnh.resolveName("max_speed") + ": expected 0 < speed <= 10 m/s");
     tilt_pub_ = nh.advertise<mm::BoardTilt>("tilt", 10);
     route_pub_ = nh.advertise<visualization_msgs::Marker>("autopilot_route", 1, true);
     status_pub_ = pnh.advertise<std_msgs::String>("status", 1, true);

@@ -21,6 +21,10 @@ constexpr double kMaxCatchUp = 1.0;  // s
 // answered in between.
 constexpr double kFreeRunSlice = 0.005;  // s of wall time
 constexpr std::uint32_t kMostStepsPerCall = 10000000;
+// What one callback following ROS time or a real-time factor may take on, in substeps (some 0.1
+// to 0.3 s of work): a tiny step with many substeps, set live, would otherwise hold the node up
+// for minutes catching up a second, its services unanswered.
+constexpr double kMostSubstepsPerCall = 1e6;
 
 std::string text(double value) {
   std::ostringstream out;
@@ -30,19 +34,25 @@ std::string text(double value) {
 
 /// Why steps of `step` seconds cannot make up a lockstep `period` (more of them a command than a
 /// call may take, which would hold the node up), or "".
-std::string whyNotLockstep(double period, double step) {
-  if (!(period / step > kMostStepsPerCall)) return "";
-  return "step: " + text(step) + " s makes ~lockstep's " + text(period) + " s more than " +
-         std::to_string(kMostStepsPerCall) + " steps a command";
+std::string whyNotLockstep(double period, const mm::Params& params) {
+  const double steps = period / params.step;
+  if (steps > kMostStepsPerCall)
+    return "step: " + text(params.step) + " s makes ~lockstep's " + text(period) + " s more than " +
+           std::to_string(kMostStepsPerCall) + " steps a command";
+  if (steps * params.substeps > kMostStepsPerCall)
+    return "substeps: " + std::to_string(params.substeps) + " a step of " + text(params.step) +
+           " s make ~lockstep's " + text(period) + " s more than " +
+           std::to_string(kMostStepsPerCall) + " substeps a command";
+  return "";
 }
 
 /// Why the node cannot run at a new `step` (a maze loaded, a value changed live), as it could not
 /// start at it: too long a lockstep period, or fewer steps a second than a rate of messages of
 /// simulated time asks for. "" when it can.
-std::string whyNotStep(const NodeSettings& settings, double step) {
-  const std::string why = whyNotLockstep(settings.lockstep, step);
+std::string whyNotStep(const NodeSettings& settings, const mm::Params& params) {
+  const std::string why = whyNotLockstep(settings.lockstep, params);
   if (!why.empty()) return why;
-  const double per_second = 1.0 / step;
+  const double step = params.step, per_second = 1.0 / step;
   if (settings.publish_rate > per_second * (1 + 1e-9) ||
       settings.marker_rate > per_second * (1 + 1e-9))
     return "step: " + text(step) + " s makes fewer steps a second than ~publish_rate or " +
@@ -61,7 +71,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   } catch (const mm::ParamError& e) {  // the marble where it cannot be: the key is ours
     throw std::runtime_error(pnh.getNamespace() + "/" + e.what());
   }
-  const std::string why = whyNotLockstep(settings_.lockstep, step());
+  const std::string why = whyNotLockstep(settings_.lockstep, session_->simulation().params());
   if (!why.empty()) throw std::runtime_error(pnh.getNamespace() + "/" + why);
   maze_text_ = scene.text;
   maze_source_ = scene.source;
@@ -150,6 +160,10 @@ void MazeNode::warnIfLockstepRounds() const {
         period, step(), taken);
 }
 
+double MazeNode::mostStepsPerCall() const {
+  return std::max(1.0, kMostSubstepsPerCall / session_->simulation().params().substeps);
+}
+
 std::uint64_t MazeNode::stepsPer(double seconds) const {
   return std::max<std::uint64_t>(1, std::llround(seconds / step()));
 }
@@ -220,8 +234,8 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
   }
   auto due = static_cast<std::int64_t>(clock_.stepsDue(now)) -
              static_cast<std::int64_t>(session_->steps());
-  const auto most =
-      static_cast<std::int64_t>(std::max(kMaxCatchUp, 5.0 / settings_.update_rate) / step());
+  const auto most = static_cast<std::int64_t>(
+      std::min(std::max(kMaxCatchUp, 5.0 / settings_.update_rate) / step(), mostStepsPerCall()));
   if (due > most) {
     ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
                       (due - most) * step());
@@ -245,7 +259,7 @@ void MazeNode::onFreeRun(const ros::WallTimerEvent&) {
     const double target =
         free_run_start_sim_ + settings_.real_time_factor * (begin - free_run_start_).toSec();
     auto due = static_cast<std::int64_t>(std::floor((target - simTime()) / step() + 1e-9));
-    const auto most = static_cast<std::int64_t>(kMaxCatchUp / step());
+    const auto most = static_cast<std::int64_t>(std::min(kMaxCatchUp / step(), mostStepsPerCall()));
     if (due > most) {
       skipped_steps_ += due - most;  // cannot keep up: say so, and aim from here
       free_run_start_ = begin;
@@ -405,7 +419,7 @@ std::string MazeNode::load(const std::string& maze) {
   mm::Scene scene;
   try {
     scene = sceneFor(maze, settings_);
-    const std::string why = whyNotStep(settings_, scene.params.step);
+    const std::string why = whyNotStep(settings_, scene.params);
     if (!why.empty()) return why;
     const ros::Time stamp = stampNow();
     session_->load(scene);
@@ -446,7 +460,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
       }
     }
     mm::validate(params);
-    const std::string why = whyNotStep(settings_, params.step);
+    const std::string why = whyNotStep(settings_, params);
     if (!why.empty()) return why;
     const ros::Time stamp = stampNow();
     session_->setParams(params);

@@ -53,6 +53,9 @@ class MazeNode {
   /// Ties the current step to ROS time `origin`, and says so on `inputs`.
   void reanchor(const ros::Time& origin);
   std::int64_t stepNs() const { return std::llround(step() * 1e9); }
+  /// How many steps one callback may take, following ROS time or a real-time factor, at the
+  /// substeps in force: more are skipped, with a warning.
+  double mostStepsPerCall() const;
   /// An input of a service, at the current step, and the state after it.
   void logInput(std::uint8_t kind, marble_maze::SimInput input = marble_maze::SimInput());
   std::uint64_t stepsPer(double seconds) const;

@@ -35,6 +35,8 @@ std::string asText(XmlRpc::XmlRpcValue value, const std::string& name) {
   }
 }
 
+}  // namespace
+
 double readNumber(const ros::NodeHandle& pnh, const std::string& key, double fallback, double min,
                   double max) {
   XmlRpc::XmlRpcValue value;
@@ -68,6 +70,8 @@ bool readFlag(const ros::NodeHandle& pnh, const std::string& key, bool fallback)
     throw std::runtime_error(pnh.resolveName(key) + ": expected true or false");
   return static_cast<bool>(value);
 }
+
+namespace {
 
 const std::set<std::string>& nodeKeys() {
   // (diagnostic_period is diagnostic_updater's own.)

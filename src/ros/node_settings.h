@@ -28,6 +28,15 @@ struct NodeSettings {
   std::vector<std::pair<std::string, std::string>> overrides;
 };
 
+/// A private parameter of the node (`key`, resolved for messages) or `fallback` when it is not
+/// set; each throws std::runtime_error naming the parameter when it is of another type, or for
+/// a number, out of [min, max]. Every node of the package reads its parameters with them.
+double readNumber(const ros::NodeHandle& pnh, const std::string& key, double fallback, double min,
+                  double max);
+std::string readText(const ros::NodeHandle& pnh, const std::string& key,
+                     const std::string& fallback);
+bool readFlag(const ros::NodeHandle& pnh, const std::string& key, bool fallback);
+
 /// Reads every private parameter; throws std::runtime_error naming a bad one (unknown, of the
 /// wrong type, out of range, a maze that does not load). `scene` gets the maze and physics.
 NodeSettings readSettings(const ros::NodeHandle& pnh, marble_maze::Scene* scene);

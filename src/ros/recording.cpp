@@ -36,10 +36,15 @@ Recording readRecording(const std::string& path) {
   }
   std::stable_sort(r.inputs.begin(), r.inputs.end(),
                    [](const auto& a, const auto& b) { return a.index < b.index; });
-  for (std::size_t k = 1; k < r.inputs.size(); ++k)
+  for (std::size_t k = 1; k < r.inputs.size(); ++k) {
+    if (r.inputs[k].index == r.inputs[k - 1].index)
+      throw std::runtime_error(path + ": input " + std::to_string(r.inputs[k].index) +
+                               " is in it twice: two sessions (two nodes, or one restarted)? " +
+                               "rosbag filter can keep one's topics");
     if (r.inputs[k].index != r.inputs[k - 1].index + 1)
       throw std::runtime_error(path + ": inputs " + std::to_string(r.inputs[k - 1].index + 1) +
                                " to " + std::to_string(r.inputs[k].index - 1) + " are missing");
+  }
   // A recorder that started late missed the inputs made before it subscribed: the replay starts
   // from the first snapshot that holds them all and has a scene recorded before it. (Two latched
   // messages of one instant, the scene and the first snapshot of a lockstep node, come in either

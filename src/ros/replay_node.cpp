@@ -11,6 +11,7 @@
 
 #include <memory>
 
+#include "node_settings.h"
 #include "recording.h"
 #include "run_node.h"
 #include "state_output.h"
@@ -25,18 +26,17 @@ class ReplayNode {
     std::string bag;
     if (!pnh.getParam("bag", bag))
       throw std::runtime_error(pnh.resolveName("bag") + ": required: a bag of record.launch");
-    rate_ = pnh.param("rate", 1.0);
-    wait_ = pnh.param("wait", false);
-    if (!(rate_ > 0 && rate_ <= 1e6))
-      throw std::runtime_error(pnh.resolveName("rate") + ": expected 0 < rate <= 1e6");
+    rate_ = marble_maze_ros::readNumber(pnh, "rate", 1.0, 1e-6, 1e6);
+    wait_ = marble_maze_ros::readFlag(pnh, "wait", false);
     recording_ = marble_maze_ros::readRecording(bag);
     replay_ = std::make_unique<marble_maze_ros::Replayer>(recording_);
     NodeSettings settings;
     settings.publish_rate = recording_.scene.publish_rate;
     settings.marker_rate = recording_.scene.marker_rate;
-    settings.world_frame = pnh.param<std::string>("world_frame", settings.world_frame);
-    settings.board_frame = pnh.param<std::string>("board_frame", settings.board_frame);
-    settings.marble_frame = pnh.param<std::string>("marble_frame", settings.marble_frame);
+    settings.world_frame = marble_maze_ros::readText(pnh, "world_frame", settings.world_frame);
+    settings.board_frame = marble_maze_ros::readText(pnh, "board_frame", settings.board_frame);
+    settings.marble_frame =
+        marble_maze_ros::readText(pnh, "marble_frame", settings.marble_frame);
     checkFrames(pnh, settings);
     out_ = std::make_unique<marble_maze_ros::StateOutput>(nh, settings);
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""rostest of marble_maze_node's start-up checks (run by bad_param.test).
+"""rostest of marble_maze_node's start-up checks (run by bad_param.test), and the replay's and
+the autopilot's.
 
 The test starts the node itself, as a child process under the rostest master, with one bad
 private parameter at a time, and checks that it exits by itself (within EXIT_TIMEOUT of wall
@@ -24,15 +25,15 @@ EXIT_TIMEOUT = 20.0  # s of wall time: generous, for a loaded machine
 CONTROL_RUN = 3.0  # s: how long the control run must keep running
 
 
-def node_path():
-    paths = roslib.packages.find_node(PKG, "marble_maze_node")
-    assert paths, "marble_maze_node not found (is the workspace built and sourced?)"
+def node_path(node="marble_maze_node"):
+    paths = roslib.packages.find_node(PKG, node)
+    assert paths, node + " not found (is the workspace built and sourced?)"
     return paths[0]
 
 
 class BadParamTest(unittest.TestCase):
-    def start(self, name, *params):
-        args = [node_path(), "__name:=" + name] + list(params)
+    def start(self, name, *params, node="marble_maze_node"):
+        args = [node_path(node), "__name:=" + name] + list(params)
         # A fresh process group, so that a node that does not exit can be ended with what it
         # started (rosconsole writes FATAL and ERROR to stderr: keep both streams).
         return subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
@@ -47,8 +48,8 @@ class BadParamTest(unittest.TestCase):
                 os.killpg(process.pid, signal.SIGKILL)
         return process.communicate()[0]
 
-    def check_refused(self, name, params, *words):
-        process = self.start(name, *params)
+    def check_refused(self, name, params, *words, node="marble_maze_node"):
+        process = self.start(name, *params, node=node)
         try:
             output = process.communicate(timeout=EXIT_TIMEOUT)[0]
         except subprocess.TimeoutExpired:
@@ -154,6 +155,15 @@ class BadParamTest(unittest.TestCase):
 
     def test_a_flag_of_the_wrong_type(self):
         self.check_refused("bp_eighteen", ["_clock:=sometimes"], "clock", "true or false")
+
+    def test_the_replay_and_the_autopilot_refuse_a_parameter_of_the_wrong_type(self):
+        # (They took a word for a number, or a number for a flag, as their default, silently.)
+        self.check_refused("bp_thirty", ["_bag:=/nonexistent.bag", "_rate:=fast"], "rate",
+                           "expected a number", node="replay")
+        self.check_refused("bp_thirtyone", ["_bag:=/nonexistent.bag", "_wait:=1"], "wait",
+                           "true or false", node="replay")
+        self.check_refused("bp_thirtytwo", ["_start_delay:=soon"], "start_delay",
+                           "expected a number", node="autopilot")
 
     def test_a_maze_file_of_garbage_and_one_of_twenty_megabytes(self):
         with tempfile.NamedTemporaryFile("wb", suffix=".yaml", delete=False) as garbage:

@@ -13,7 +13,9 @@
     speed after it is 0.9 times the approach, less the gravity since, within 1e-6 m/s); a bad
     value is refused and nothing changes; the values in force are on the parameter server, and
     a value changed live holds over a maze loaded later;
-  - /diagnostics carries the real-time factor; odom is published in world with child marble.
+  - /diagnostics carries the real-time factor; odom is published in world with child marble;
+  - a microsecond step of 1000 substeps set live leaves the node answering its services within
+    10 s, /diagnostics saying it fell behind.
 """
 import math
 import os
@@ -218,6 +220,27 @@ class ServicesTest(unittest.TestCase):
         odom = self.odom.wait(lambda m: True)
         self.assertEqual((odom.header.frame_id, odom.child_frame_id), ("world", "marble"))
 
+
+    def test_8_a_step_too_costly_to_keep_up_with_leaves_the_node_answering(self):
+        # A microsecond step of 1000 substeps, set live (within the documented ranges): a second
+        # of ROS time is a billion substeps. The node takes at most a million a callback and
+        # skips the rest with a warning, so that its services are answered (a pause took 1 min
+        # 40 s when it caught up a second at a time).
+        client = Client(NODE, timeout=20)
+        client.update_configuration({"step": 1e-6, "substeps": 1000})
+        try:
+            time.sleep(1.0)
+            begin = time.time()
+            self.assertTrue(call("pause", Trigger).success)
+            self.assertLess(time.time() - begin, 10)
+            self.assertTrue(call("resume", Trigger).success)
+            after = rospy.get_rostime() + rospy.Duration(1.0)
+            behind = self.diagnostics.wait(
+                lambda a: a.header.stamp > after and
+                any("fell behind" in st.message for st in a.status), timeout=10)
+            self.assertIsNotNone(behind, "/diagnostics does not say the node fell behind")
+        finally:
+            client.update_configuration({"step": 0.001, "substeps": 1})
 
     def test_7_bad_arguments_and_calls_at_the_wrong_moment(self):
         # Refused with the argument named, and the node runs on in a valid state.

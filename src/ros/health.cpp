@@ -31,6 +31,9 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   else if (!now_.lockstep && aimed > 0 && factor < 0.9 * aimed)
     status.summaryf(Level::WARN, "running at %.2f times real time, below the %.2f aimed at", factor,
                     aimed);
+  else if (now_.lost > before_.lost)
+    status.summaryf(Level::WARN, "%llu tilt commands lost on the way (a burst too large?)",
+                    static_cast<unsigned long long>(now_.lost - before_.lost));
   else if (now_.queued > 1000)
     status.summaryf(Level::WARN, "%zu tilt commands wait for their step (stamped far ahead?)",
                     now_.queued);
@@ -41,6 +44,7 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("steps skipped to catch up (last period)", skipped);
   status.add("tilt commands per second", command_rate);
   status.add("seconds since the last tilt command", now_.since_command);
+  status.add("tilt commands lost on the way (last period)", now_.lost - before_.lost);
   status.add("commands queued", now_.queued);
   status.add("simulated time (s)", now_.simulated_time);
   before_ = now_;

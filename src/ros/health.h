@@ -22,6 +22,7 @@ struct HealthFigures {
   double ros_time = 0;              ///< s, ROS time now
   std::uint64_t skipped_steps = 0;  ///< steps skipped to catch up since the start
   std::uint64_t commands = 0;       ///< tilt commands received since the start
+  std::uint64_t lost = 0;           ///< tilt commands lost on the way since the start
   double since_command = -1;        ///< s of ROS time since the last command; -1 none yet
   std::size_t queued = 0;           ///< commands waiting for their step
   bool paused = false;

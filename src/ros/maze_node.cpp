@@ -318,6 +318,7 @@ void MazeNode::updateHealth() {
   f.ros_time = ros::Time::now().toSec();
   f.skipped_steps = skipped_steps_;
   f.commands = input_->received();
+  f.lost = input_->lost();
   f.since_command = input_->last().isZero() ? -1 : (ros::Time::now() - input_->last()).toSec();
   f.queued = session_->queued();
   f.paused = session_->paused();

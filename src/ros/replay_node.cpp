@@ -35,8 +35,7 @@ class ReplayNode {
     settings.marker_rate = recording_.scene.marker_rate;
     settings.world_frame = marble_maze_ros::readText(pnh, "world_frame", settings.world_frame);
     settings.board_frame = marble_maze_ros::readText(pnh, "board_frame", settings.board_frame);
-    settings.marble_frame =
-        marble_maze_ros::readText(pnh, "marble_frame", settings.marble_frame);
+    settings.marble_frame = marble_maze_ros::readText(pnh, "marble_frame", settings.marble_frame);
     checkFrames(pnh, settings);
     out_ = std::make_unique<marble_maze_ros::StateOutput>(nh, settings);
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);

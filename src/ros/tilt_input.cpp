@@ -9,13 +9,37 @@ TiltInput::TiltInput(ros::NodeHandle& nh, Handler handler,
                      std::function<const mm::Params&()> limits)
     : handler_(std::move(handler)), limits_(std::move(limits)) {
   const auto hints = ros::TransportHints().tcpNoDelay();
-  tilt_sub_ = nh.subscribe("tilt", 100, &TiltInput::onTilt, this, hints);
-  rate_sub_ = nh.subscribe("tilt_rate", 100, &TiltInput::onTiltRate, this, hints);
+  // Deep queues: in lockstep each command runs its control period before the next is read, and an
+  // agent may send a burst.
+  tilt_sub_ = nh.subscribe("tilt", 1000, &TiltInput::onTilt, this, hints);
+  rate_sub_ = nh.subscribe("tilt_rate", 1000, &TiltInput::onTiltRate, this, hints);
   tilt_topic_ = tilt_sub_.getTopic();
   rate_topic_ = rate_sub_.getTopic();
 }
 
-void TiltInput::onTilt(const marble_maze::BoardTilt::ConstPtr& msg) {
+void TiltInput::checkNoneLost(const std::string& topic, const std::string& publisher,
+                              const std_msgs::Header& header) {
+  const auto [last, first] = last_seq_.try_emplace(topic + " " + publisher, header.seq);
+  const std::uint32_t expected = last->second + 1;
+  last->second = header.seq;
+  if (first || header.seq <= expected) return;  // (a lower one: the publisher restarted)
+  lost_ += header.seq - expected;
+  lost_total_ += header.seq - expected;
+  // Said at most once a second of wall time (ROS time may run a thousand times faster), with
+  // every command lost since.
+  const ros::WallTime now = ros::WallTime::now();
+  if (!said_lost_.isZero() && (now - said_lost_).toSec() < 1.0) return;
+  said_lost_ = now;
+  ROS_WARN(
+      "%s: %llu commands from %s lost on the way (the last before header.seq %u): a "
+      "burst larger than the publisher's queue or the node's (1000)?",
+      topic.c_str(), static_cast<unsigned long long>(lost_), publisher.c_str(), header.seq);
+  lost_ = 0;
+}
+
+void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& event) {
+  const marble_maze::BoardTilt::ConstPtr msg = event.getConstMessage();
+  checkNoneLost(tilt_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll) || !std::isfinite(msg->pitch)) {
     ROS_WARN_THROTTLE(1.0, "%s: refused roll=%g pitch=%g (not finite); the board keeps its tilt",
                       tilt_topic_.c_str(), msg->roll, msg->pitch);
@@ -28,7 +52,9 @@ void TiltInput::onTilt(const marble_maze::BoardTilt::ConstPtr& msg) {
   pass(tilt_topic_, msg->header, mm::TiltCommand::Kind::Angles, msg->roll, msg->pitch);
 }
 
-void TiltInput::onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg) {
+void TiltInput::onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltRate>& event) {
+  const marble_maze::BoardTiltRate::ConstPtr msg = event.getConstMessage();
+  checkNoneLost(rate_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll_rate) || !std::isfinite(msg->pitch_rate)) {
     ROS_WARN_THROTTLE(1.0, "%s: refused roll_rate=%g pitch_rate=%g (not finite); nothing changed",
                       rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate);

@@ -1,7 +1,8 @@
 // The board's commands from `tilt` (target angles) and `tilt_rate` (rates): refused with a
 // warning naming the topic and field when not finite, clamped with a warning beyond the limits,
 // and handed on with their stamp (zero: now). A command the handler holds for later (stamped
-// ahead of the simulation's clock) is told at once, with how far ahead. Counts them, for the
+// ahead of the simulation's clock) is told at once, with how far ahead; so are commands lost on
+// the way (a gap in a publisher's header.seq: its queue overflowed). Counts them, for the
 // diagnostics.
 #pragma once
 
@@ -9,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "marble_maze/BoardTilt.h"
@@ -31,11 +33,16 @@ class TiltInput {
             std::function<const marble_maze::Params&()> limits);
 
   std::uint64_t received() const { return received_; }
+  /// Commands lost on the way since the start (gaps in their publishers' header.seq).
+  std::uint64_t lost() const { return lost_total_; }
   ros::Time last() const { return last_; }
 
  private:
-  void onTilt(const marble_maze::BoardTilt::ConstPtr& msg);
-  void onTiltRate(const marble_maze::BoardTiltRate::ConstPtr& msg);
+  void onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& event);
+  void onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltRate>& event);
+  /// Warns when `header` is not the one after the last from its publisher on `topic`.
+  void checkNoneLost(const std::string& topic, const std::string& publisher,
+                     const std_msgs::Header& header);
   void pass(const std::string& topic, const std_msgs::Header& header,
             marble_maze::TiltCommand::Kind kind, double roll, double pitch);
 
@@ -45,6 +52,10 @@ class TiltInput {
   std::string tilt_topic_, rate_topic_;  // kept: a warning names them long after subscribing
   std::uint64_t received_ = 0;
   ros::Time last_;
+  std::map<std::string, std::uint32_t> last_seq_;  // by topic and publisher
+  std::uint64_t lost_ = 0;                         // commands lost since the last warning
+  std::uint64_t lost_total_ = 0;
+  ros::WallTime said_lost_;
 };
 
 }  // namespace marble_maze_ros

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest of ~lockstep (run by lockstep.test, control period 0.02 s): each tilt command is
 answered by a marble_state exactly one control period (20 steps) later in simulated time, with
-the command in force; a reset between commands is shown at once, at the stamp of the state
+the command in force; a burst of 300 commands is taken whole; a reset between commands is shown at once, at the stamp of the state
 before it; paused, a command waits for the next step taken; and the example agent
 (examples/lockstep_agent.py) brings the marble within 5 mm of its point, printing the steps per
 second of wall time it reaches."""
@@ -57,6 +57,24 @@ class LockstepTest(unittest.TestCase):
         self.assertAlmostEqual(states[-1].pitch, 0.05, delta=1e-9)  # the command in force
         print("lockstep: %d commands in %.2f s of wall time: %.0f steps per second"
               % (COMMANDS, wall, COMMANDS * 20 / wall))
+
+    def test_a_burst_of_commands_is_taken_whole(self):
+        # 300 commands at once, each running its period before the next is read: every one is
+        # taken (the node's queue was 100 deep, and the rest went without a word).
+        states, arrived, tilt = self.connect()
+        burst = rospy.Publisher("tilt", BoardTilt, queue_size=1000)
+        while burst.get_num_connections() == 0:
+            time.sleep(0.05)
+        time.sleep(0.5)
+        with arrived:
+            before = len(states)
+        for _ in range(300):
+            burst.publish(BoardTilt(roll=0.01, pitch=0.0))
+        with arrived:
+            self.assertTrue(arrived.wait_for(lambda: len(states) - before >= 300, timeout=30),
+                            "%d states for 300 commands" % (len(states) - before))
+            stamps = [s.header.stamp.to_nsec() for s in states[before:]]
+        self.assertEqual({b - a for a, b in zip(stamps, stamps[1:])}, {PERIOD_NS})
 
     def test_a_reset_is_shown_at_once_at_the_same_stamp(self):
         states, arrived, tilt = self.connect()

@@ -27,6 +27,8 @@ class TiltSchedule {
 
   Point at(double time) const;
   double duration() const { return points_.empty() ? 0.0 : points_.back().time; }
+  /// The largest |roll| or |pitch| it asks for (rad).
+  double largestTilt() const;
 
  private:
   std::vector<Point> points_;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "marble_maze/embedded_mazes.h"
@@ -469,12 +470,14 @@ class SceneParser {
 
   Params readPhysics(const Entry* physics, std::vector<std::string>* keys) const {
     Params params = defaults_;
+    std::map<std::string, Location> where;  // each key's value in the file
     if (physics && !physics->value.IsNull()) {
       for (const auto& entry : readMapping(physics->value, "in physics", {})) {
         const std::string text = physicsText(entry);
         try {
           setParam(params, entry.key, text);
           keys->push_back(entry.key);
+          where[entry.key] = at(entry.value);
         } catch (const ParamError& e) {
           fail(isParamKey(entry.key) ? at(entry.value) : at(entry.key_node), e.what());
         }
@@ -483,7 +486,14 @@ class SceneParser {
     try {
       validate(params);
     } catch (const ParamError& e) {
-      fail(physics ? at(physics->key_node) : Location{}, e.what());
+      // A rule over several keys names the one it faults first ("bounce_threshold: ..."): the
+      // error points at it where the file sets it, else at the section.
+      const std::string what = e.what();
+      const auto named = where.find(what.substr(0, what.find(':')));
+      fail(named != where.end() ? named->second
+           : physics            ? at(physics->key_node)
+                                : Location{},
+           what);
     }
     return params;
   }

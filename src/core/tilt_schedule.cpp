@@ -1,6 +1,7 @@
 #include "marble_maze/tilt_schedule.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "marble_maze/params.h"
@@ -54,6 +55,12 @@ TiltSchedule::Point TiltSchedule::at(double time) const {
   const Point& a = *(b - 1);
   const double f = (time - a.time) / (b->time - a.time);
   return {time, a.roll + f * (b->roll - a.roll), a.pitch + f * (b->pitch - a.pitch)};
+}
+
+double TiltSchedule::largestTilt() const {
+  double largest = 0;
+  for (const Point& p : points_) largest = std::max({largest, std::abs(p.roll), std::abs(p.pitch)});
+  return largest;
 }
 
 }  // namespace marble_maze

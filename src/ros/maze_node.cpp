@@ -426,7 +426,7 @@ std::string MazeNode::load(const std::string& maze) {
     session_->load(scene);
     if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length
   } catch (const mm::MazeFileError& e) {
-    return e.what();
+    return std::string("maze: ") + e.what();
   } catch (const mm::ParamError& e) {
     return e.what();
   }

@@ -58,7 +58,10 @@ bool SimServices::onPlace(marble_maze::PlaceMarble::Request& req,
 
 bool SimServices::onLoad(marble_maze::LoadMaze::Request& req,
                          marble_maze::LoadMaze::Response& res) {
-  return answer(control_.load(req.maze), "load_maze", "loaded '" + req.maze + "'", &res);
+  const std::string why = req.maze.empty() ? "maze: empty; expected a built-in maze's name "
+                                             "(classic, prototype) or a maze file's path"
+                                           : control_.load(req.maze);
+  return answer(why, "load_maze", "loaded '" + req.maze + "'", &res);
 }
 
 }  // namespace marble_maze_ros

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <limits>
 #include <ostream>
 #include <set>
@@ -167,6 +168,10 @@ Run prepare(const Options& o) {
   } catch (const ParamError& e) {
     throw UsageError(std::string("--set ") + e.what());
   }
+  // Clamped to the tilt limit as the node clamps a command, and said as the node says it.
+  if (o.tilt.largestTilt() > scene.params.tilt_limit)
+    std::cerr << "simulate: the tilt program asks for up to " << o.tilt.largestTilt()
+              << " rad, beyond tilt_limit " << scene.params.tilt_limit << " rad; clamped\n";
   // The board starts where the tilt program starts (within the tilt limit, as every tilt), so
   // that a constant tilt is an incline from t = 0.
   if (!initial_tilt_set) {

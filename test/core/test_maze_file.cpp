@@ -251,10 +251,18 @@ TEST(MazeFileError, BadPhysicsValue) {
                         "bad.yaml:10:16:", "restitution: 2 is out of range"));
 }
 
-TEST(MazeFileError, PhysicsThatFailsValidationPointsAtPhysics) {
+TEST(MazeFileError, PhysicsThatFailsValidationPointsAtTheKeyItNames) {
+  // The rule (a threshold of at least 2 g h) is over several keys; it names bounce_threshold,
+  // set on line 11, not on the section's line.
   EXPECT_TRUE(failsWith(
       kGrid + kLayout + "physics:\n  integrator: semi_implicit_euler\n  bounce_threshold: 0.001\n",
-      "bad.yaml:9:1:", "bounce_threshold"));
+      "bad.yaml:11:21:", "bounce_threshold"));
+  // A key the file does not set: the section.
+  Params threshold_given;
+  threshold_given.bounce_threshold_auto = false;
+  threshold_given.bounce_threshold = 0.001;
+  EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  integrator: semi_implicit_euler\n",
+                        "bad.yaml:9:1:", "bounce_threshold", threshold_given));
   Params defaults;
   defaults.integrator = IntegratorKind::SemiImplicitEuler;
   defaults.bounce_threshold_auto = false;

@@ -56,7 +56,11 @@ TEST(SimulateCli, ATiltMovesTheMarbleAndTheSummarySaysWhatHappened) {
 
 TEST(SimulateCli, ATiltBeyondTheLimitIsClampedLikeAnyTilt) {
   const std::string out = tempPath("steep.csv");
-  ASSERT_EQ(runSimulate("--tilt 0.5,0 --duration 0.01 --quiet --out " + out).status, 0);
+  const Result steep = runSimulate("--tilt 0.5,0 --duration 0.01 --quiet --out " + out);
+  ASSERT_EQ(steep.status, 0);
+  EXPECT_NE(steep.output.find("up to 0.5 rad, beyond tilt_limit 0.174533 rad; clamped"),
+            std::string::npos)
+      << steep.output;  // said, as the node says it
   const std::string rows = readFile(out);
   const std::string first = rows.substr(rows.find('\n') + 1);
   // roll, the 11th column, starts at the 10 degree limit
@@ -64,7 +68,9 @@ TEST(SimulateCli, ATiltBeyondTheLimitIsClampedLikeAnyTilt) {
   std::string field;
   for (int i = 0; i < 11; ++i) std::getline(row, field, ',');
   EXPECT_NEAR(std::stod(field), 0.17453292519943295, 1e-8);
-  EXPECT_EQ(runSimulate("--tilt 0.25,0 --set tilt_limit=0.3 --duration 0.01 --quiet").status, 0);
+  const Result within = runSimulate("--tilt 0.25,0 --set tilt_limit=0.3 --duration 0.01 --quiet");
+  EXPECT_EQ(within.status, 0);
+  EXPECT_EQ(within.output.find("clamped"), std::string::npos) << within.output;
 }
 
 /// The board's roll in the trajectory's first row (at t = 0) of `simulate ARGS --out FILE`.

@@ -13,7 +13,8 @@ rosbag play), each on a master of its own:
   5. play that bag twice in a loop (-l): the node starts over when time jumps back, and a tf
      listener sees no TF_REPEATED_DATA or TF_OLD_DATA;
   6. re-simulate the first at half the step: each input acts at its recorded simulated time;
-     a bag without the states fails --check, one without the inputs is refused;
+     a bag without the states fails --check, one without the inputs is refused, one whose
+     first snapshot comes before the scene replays from the next;
   7. the node, stopped, leaves on the parameter server only the parameters it was given.
 
 Plain unittest in the workspace given by MARBLE_MAZE_WS: python3 test/ros/test_record_replay.py;
@@ -31,6 +32,7 @@ import time
 import unittest
 
 import rosbag
+import rospy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # Where the recorded session's board is in the world, m: the states published are there.
@@ -203,6 +205,21 @@ class RecordReplayTest(unittest.TestCase):
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("no marble_maze/SimInput (inputs)", run.stderr)
+        # The first snapshot recorded before the scene (two latched messages of one instant come
+        # in either order, as a lockstep node's do): the replay starts from the next snapshot.
+        swapped = os.path.join(self.dir, "snapshot_first.bag")
+        with rosbag.Bag(self.session) as bag:
+            messages = list(bag.read_messages())
+        scene_at = next(t for _, m, t in messages if m._type == "marble_maze/SceneDescription")
+        first = next(k for k, (_, m, _) in enumerate(messages)
+                     if m._type == "marble_maze/SimSnapshot")
+        with rosbag.Bag(swapped, "w") as out:
+            for k, (topic, m, t) in enumerate(messages):
+                out.write(topic, m, scene_at - rospy.Duration(0, 1) if k == first else t)
+        run = subprocess.run([simulate, "--bag", swapped, "--check"], capture_output=True,
+                             text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("all identical", run.stdout)
 
     def test_7_the_node_leaves_its_parameters_as_they_were_given(self):
         # The values it wrote back while running (every key in force) go when it stops, so that

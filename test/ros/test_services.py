@@ -259,7 +259,10 @@ class ServicesTest(unittest.TestCase):
         self.assertIn("angular_velocity", spin.message)
         endless = call("load_maze", LoadMaze, "/dev/zero")  # a device with no end
         self.assertFalse(endless.success)
-        self.assertIn("more than 16 MB", endless.message)
+        self.assertIn("load_maze: maze: /dev/zero: more than 16 MB", endless.message)
+        empty = call("load_maze", LoadMaze, "")
+        self.assertFalse(empty.success)
+        self.assertIn("load_maze: maze: empty", empty.message)
         # Twice in a row, in every order: each answers, none breaks the next.
         for service in ("pause", "pause", "resume", "resume", "reset", "pause", "reset"):
             self.assertTrue(call(service, Trigger).success, service)

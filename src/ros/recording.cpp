@@ -101,8 +101,12 @@ Replayer::Replayer(const Recording& recording, const Overrides& overrides)
   settings.auto_reset = recording.scene.auto_reset;
   session_ = std::make_unique<mm::Session>(scene, settings);
   session_->restore(recording.snapshot.state);
-  clock_.anchor(recording.snapshot.anchor_stamp, recording.snapshot.anchor_step,
-                recording.snapshot.anchor_time, stepNs());
+  const mm::SimSnapshot& snapshot = recording.snapshot;
+  const auto recorded_ns = std::llround(mm::paramsFromText(snapshot.params).step * 1e9);
+  clock_.anchor(snapshot.anchor_stamp, snapshot.anchor_step, snapshot.anchor_time, recorded_ns);
+  // Under another step (--set step=...) the steps go on from the snapshot's, at its stamp.
+  if (stepNs() != recorded_ns)
+    clock_.anchor(stamp(), session_->steps(), session_->simulation().time(), stepNs());
   scheduleInputs();
 }
 

@@ -180,6 +180,8 @@ class RecordReplayTest(unittest.TestCase):
         # rounding) until the marble, which goes its own way, first finishes in either run.
         # (Each input used to act at its step number, at half its time.)
         (recorded, finish), (halved, finish_halved) = board(), board("--set", "step=0.0005")
+        # Both run to the session's end.
+        self.assertAlmostEqual(max(recorded), max(halved), delta=0.002)
         common = [t for t in sorted(set(recorded) & set(halved))
                   if t < min(finish, finish_halved)]
         self.assertGreater(common[-1] - common[0], 3)

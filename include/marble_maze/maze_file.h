@@ -18,6 +18,9 @@ struct Scene {
   std::string source;  ///< where the text came from: a path or "<embedded:NAME>"
   /// The parameters the file's physics section sets, in its order (the rest are defaults).
   std::vector<std::string> physics_keys;
+  /// Where the file marks the start ('S'): "SOURCE:LINE:COLUMN" ("" when built in code), for an
+  /// error about the start cell.
+  std::string start_in_file;
 };
 
 /// A malformed maze file. what() reads "SOURCE:LINE:COLUMN: message" (1-based line and column).

@@ -130,7 +130,10 @@ class SceneParser {
     const auto top =
         readMapping(root, "at the top level", {"name", "grid", "layout", "layers", "physics"});
     Scene scene;
-    scene.maze = readMaze(root, top);
+    Location start;
+    scene.maze = readMaze(root, top, &start);
+    scene.start_in_file = prefix(source_, start.line, start.column);
+    scene.start_in_file.resize(scene.start_in_file.size() - 2);  // without prefix's ": "
     scene.maze.setName(readName(findEntry(top, "name")));
     scene.params = readPhysics(findEntry(top, "physics"), &scene.physics_keys);
     return scene;
@@ -405,7 +408,7 @@ class SceneParser {
                 AxisSlots(widths[2].first, widths[2].second, layers));
   }
 
-  Maze readMaze(const YAML::Node& root, const std::vector<Entry>& top) const {
+  Maze readMaze(const YAML::Node& root, const std::vector<Entry>& top, Location* start) const {
     const auto widths = readGrid(root, top);
     const Entry* layout = findEntry(top, "layout");
     const Entry* layers = findEntry(top, "layers");
@@ -428,6 +431,7 @@ class SceneParser {
         fillLayer(maze, plans[k], static_cast<int>(k), markers);
     }
     placeMarkers(maze, markers, layout ? *layout : *layers);
+    *start = markers.start_at;
     return maze;
   }
 

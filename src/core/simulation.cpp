@@ -50,6 +50,7 @@ Simulation::Simulation(const Scene& scene)
     else
       message << "marble_radius: a marble of radius " << params_.marble_radius
               << " m does not fit the start cell (" << maze_.start().i << ", " << maze_.start().j
+              << (scene.start_in_file.empty() ? "" : ", the 'S' at " + scene.start_in_file)
               << "): " << why;
     throw ParamError(message.str());
   }

@@ -118,6 +118,7 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--set start_position=0,0,0.006",
        "start_position: the marble cannot start there: inside tile (10, 8, 1)"},
       {"--set marble_radius=0.015", "marble_radius: a marble of radius 0.015 m does not fit"},
+      {"--set marble_radius=0.015", "start cell (1, 15, the 'S' at <embedded:classic>:13:4)"},
       {"--maze /dev/zero", "/dev/zero: more than 16 MB"},  // a device read without end
       {"--tilt-csv /dev/zero", "--tilt-csv: /dev/zero: more than 16 MB"},
       {"--maze /tmp", "/tmp: is a directory"},

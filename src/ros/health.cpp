@@ -40,7 +40,9 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   else
     status.summary(Level::OK, "running");
   status.add("real-time factor", factor);
-  status.add("real-time factor aimed at (0: as fast as it can)", aimed);
+  status.add(now_.follows_ros_time ? "real-time factor aimed at (ROS time's own)"
+                                   : "real-time factor aimed at (0: as fast as it can)",
+             aimed);
   status.add("steps skipped to catch up (last period)", skipped);
   status.add("tilt commands per second", command_rate);
   status.add("seconds since the last tilt command", now_.since_command);

@@ -52,11 +52,13 @@ std::string whyNotLockstep(double period, const mm::Params& params) {
 std::string whyNotStep(const NodeSettings& settings, const mm::Params& params) {
   const std::string why = whyNotLockstep(settings.lockstep, params);
   if (!why.empty()) return why;
-  const double step = params.step, per_second = 1.0 / step;
-  if (settings.publish_rate > per_second * (1 + 1e-9) ||
-      settings.marker_rate > per_second * (1 + 1e-9))
-    return "step: " + text(step) + " s makes fewer steps a second than ~publish_rate or " +
-           "~marker_rate asks for";
+  const double per_second = 1.0 / params.step;
+  for (const auto& [key, rate] :
+       {std::pair<const char*, double>{"~publish_rate", settings.publish_rate},
+        {"~marker_rate", settings.marker_rate}})
+    if (rate > per_second * (1 + 1e-9))
+      return "step: " + text(params.step) + " s makes " + text(per_second) +
+             " steps a second, fewer than " + key + "'s " + text(rate) + " Hz";
   return "";
 }
 
@@ -421,7 +423,7 @@ std::string MazeNode::load(const std::string& maze) {
   try {
     scene = sceneFor(maze, settings_);
     const std::string why = whyNotStep(settings_, scene.params);
-    if (!why.empty()) return why;
+    if (!why.empty()) return "maze: " + maze + ": " + why;
     const ros::Time stamp = stampNow();
     session_->load(scene);
     if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length

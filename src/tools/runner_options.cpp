@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <ostream>
@@ -58,6 +59,18 @@ double parseDouble(const std::string& flag, const std::string& text) {
   double value;
   if (!parseFiniteNumber(text, &value)) throw UsageError(flag + ": " + whyNotANumber(text));
   return value;
+}
+
+/// Whether two outputs are one: standard output twice, or one file by two names.
+bool sameOutput(const std::string& a, const std::string& b) {
+  const auto name = [](const std::string& path) -> std::string {
+    if (path == "-" || path == "/dev/stdout") return "-";
+    std::error_code error;
+    const std::filesystem::path canonical =
+        std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);
+    return error ? path : canonical.string();
+  };
+  return name(a) == name(b);
 }
 
 }  // namespace
@@ -135,7 +148,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     }
   }
   // Two CSVs in one file, or both on standard output, would be one garbled CSV.
-  if (!o.out.empty() && o.out == o.events)
+  if (!o.out.empty() && !o.events.empty() && sameOutput(o.out, o.events))
     throw UsageError("--events: '" + o.events + "' is --out's too; the trajectory and the " +
                      "events need a file each");
   // A recorded session brings its maze, its tilts and its length: a flag that would set them

@@ -130,6 +130,8 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       // Two CSVs in one file would garble both; a third tilt value is not silently dropped.
       {"--out t.csv --events t.csv", "--events: 't.csv' is --out's too"},
       {"--out - --events -", "--events: '-' is --out's too"},
+      {"--out ./t.csv --events t.csv", "--events: 't.csv' is --out's too"},
+      {"--out - --events /dev/stdout", "--events: '/dev/stdout' is --out's too"},
       {"--tilt 0.1,0.1,0.1", "--tilt: expected ROLL,PITCH, got '0.1,0.1,0.1'"},
   };
   for (const auto& [args, message] : cases) {

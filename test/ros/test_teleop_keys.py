@@ -1,4 +1,5 @@
-"""Unit tests of teleop_key's key handling: which way each key tilts the board, and the limits.
+"""Unit tests of teleop_key's key handling: which way each key tilts the board, and the limits;
+and its parameters: one that is not a positive number is refused by name.
 
 Plain unittest, no ROS master: python3 test/ros/test_teleop_keys.py, or
 python3 -m unittest discover -s test/ros (not "-m unittest test/ros/...": the standard library's own
@@ -75,6 +76,17 @@ class NextTargetTest(unittest.TestCase):
     def test_other_keys_change_nothing(self):
         for key in ("x", "r", "q", "\x1b"):
             self.assertEqual(press(key, roll=0.03, pitch=-0.02), (0.03, -0.02))
+
+
+class ParametersTest(unittest.TestCase):
+    def test_a_parameter_that_is_not_a_positive_number_is_named(self):
+        from unittest import mock
+        for value in ("abc", True, 0, -0.01, [1]):
+            with mock.patch.object(teleop.rospy, "get_param", return_value=value):
+                with self.assertRaisesRegex(ValueError, "step: expected a positive number"):
+                    teleop.positive("~step", 0.01)
+        with mock.patch.object(teleop.rospy, "get_param", return_value=2):
+            self.assertEqual(teleop.positive("~rate", 10.0), 2.0)
 
 
 class DecodeKeysTest(unittest.TestCase):

@@ -94,6 +94,7 @@ mm::Scene playScene(const mm::Params& params) {
 
 /// The board's tilt circling at 0.1 rad, one turn in 2 s, given every 0.25 s (a servo follows
 /// it): the marble is still rolling at 0.15 m/s after 5 s and meets about seven walls a second.
+/// A controller reads it every kCommandPeriod (below).
 const mm::TiltSchedule& playProgramme() {
   static const mm::TiltSchedule programme = [] {
     std::string text;
@@ -120,6 +121,13 @@ double cpuNow() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// The play's controller sends the programme's tilt at 50 Hz, about the real game's rate, at the
+// same instants whatever the step (every step measured divides 20 ms): every option plays the
+// same commands, and the play error is the physics' alone. (Sampled at each step's end instead,
+// a longer step led the board by half a step: an error of order the step, which one substep
+// happened to cancel and more substeps did not.)
+constexpr double kCommandPeriod = 0.02;  // s
+
 Play play(const mm::Params& params) {
   const mm::Scene scene = playScene(params);
   mm::Simulation sim(scene);
@@ -128,7 +136,8 @@ Play play(const mm::Params& params) {
   const auto steps = std::lround(10.0 / params.step), half = std::lround(5.0 / params.step);
   const double start = cpuNow();
   for (long n = 1; n <= steps; ++n) {
-    const auto tilt = programme.at(static_cast<double>(n) * params.step);
+    const double now = static_cast<double>(n - 1) * params.step;  // the step's start
+    const auto tilt = programme.at(std::floor(now / kCommandPeriod + 1e-9) * kCommandPeriod);
     sim.setTargetTilt(tilt.roll, tilt.pitch);
     sim.step();
     for (const mm::Event& e : sim.events())

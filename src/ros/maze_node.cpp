@@ -339,8 +339,10 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
     // Paused, it waits for the step service's next step, as on any clock (or is replaced by the
     // first command after resume, which acts at the same step).
     session_->command({now, kind, roll, pitch});
-    if (!session_->paused()) runSteps(stepsPer(settings_.lockstep));
-    publishNow();
+    if (!session_->paused()) {  // (paused, no step is taken and no state comes)
+      runSteps(stepsPer(settings_.lockstep));
+      publishNow();
+    }
     updateHealth();
     return 0;
   }

@@ -102,9 +102,13 @@ class LockstepTest(unittest.TestCase):
         try:
             step = rospy.ServiceProxy("step", Step)
             base = step(1).state
+            time.sleep(0.5)  # the step's own state comes
+            with arrived:
+                before = len(states)
             tilt.publish(BoardTilt(roll=0.03, pitch=-0.02))
             time.sleep(1.0)
-            with arrived:  # no step taken: no state later than the one before the command
+            with arrived:  # no step taken: no state at all
+                self.assertEqual(len(states), before)
                 self.assertFalse([m for m in states if m.header.stamp > base.header.stamp])
             # One step taken: the command acts from it.
             after = step(1).state

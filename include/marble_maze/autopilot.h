@@ -57,6 +57,9 @@ class Autopilot {
  private:
   bool onRoute(const Vec2& position) const;
   double distanceToTurn(const Vec2& position) const;
+  /// Whether `position` lies past waypoint k where the route runs straight through it, within a
+  /// radius of the route's line.
+  bool passedOnStraight(const Vec2& position, std::size_t k) const;
   /// The marble's board-frame acceleration down the slope of a board tilted so, walls aside.
   Vec2 accelerationAt(const Tilt& tilt) const;
 

@@ -46,6 +46,15 @@ double Autopilot::distanceToTurn(const Vec2& position) const {
   return distance;
 }
 
+bool Autopilot::passedOnStraight(const Vec2& position, std::size_t k) const {
+  const auto& w = route_.waypoints;
+  if (k == 0 || k + 1 >= w.size()) return false;
+  const Vec2 in = (w[k] - w[k - 1]).normalized(), out = (w[k + 1] - w[k]).normalized();
+  if (in.dot(out) < 0.99) return false;  // a turn: the marble must brake for it, not pass it
+  const Vec2 from = position - w[k];
+  return from.dot(out) > 0 && std::abs(from.x() * out.y() - from.y() * out.x()) < radius_;
+}
+
 Vec2 Autopilot::accelerationAt(const Tilt& tilt) const {
   // a = k sin(tilt) down the slope: positive pitch lowers +x, positive roll raises +y.
   const double k = settings_.acceleration_per_tilt;
@@ -58,17 +67,19 @@ Tilt Autopilot::steer(const Observation& seen) {
     if (!plan(position)) return Tilt();
   }
   const auto& w = route_.waypoints;
-  // A waypoint within a radius is reached; the next two are looked at too, in case the marble
-  // passed one on the way.
-  const double reach = radius_;
-  for (std::size_t k = next_; k < std::min(w.size(), next_ + 3); ++k)
-    if ((w[k] - position).norm() < reach) next_ = std::min(k + 1, w.size() - 1);
-
   // Where the marble will be, and how fast, when the tilt acts.
   const double ahead = settings_.lead + std::clamp(seen.age, 0.0, kLongestAge);
   const Vec2 slope = accelerationAt(seen.tilt);
   const Vec2 then = position + ahead * (seen.velocity + 0.5 * ahead * slope);
   const Vec2 velocity = seen.velocity + ahead * slope;
+  // A waypoint is reached when the marble is within a radius of it, now or by then, or will be
+  // past it where the route runs straight on (else it would be steered back to it); the next two
+  // are looked at too, in case the marble passed one on the way.
+  const double reach = radius_;
+  for (std::size_t k = next_; k < std::min(w.size(), next_ + 3); ++k)
+    if ((w[k] - position).norm() < reach || (w[k] - then).norm() < reach ||
+        passedOnStraight(then, k))
+      next_ = std::min(k + 1, w.size() - 1);
 
   const double largest = settings_.acceleration_per_tilt * std::sin(settings_.tilt_limit);
   // As fast as allows stopping at the next turn (or the goal) with the braking share.

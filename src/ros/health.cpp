@@ -18,9 +18,12 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   const double factor = wall > 0 ? (now_.simulated_time - before_.simulated_time) / wall : 0;
   const double command_rate = wall > 0 ? (now_.commands - before_.commands) / wall : 0;
   const std::uint64_t skipped = now_.skipped_steps - before_.skipped_steps;
-  const double aimed = !now_.follows_ros_time ? now_.aimed_factor
-                       : wall > 0             ? (now_.ros_time - before_.ros_time) / wall
-                                              : 1;
+  // (ROS time's rate needs a sample before this one; a clock that started or went back since
+  // has no rate to aim at.)
+  const double ros_elapsed = now_.ros_time - before_.ros_time;
+  const double aimed = !now_.follows_ros_time                                 ? now_.aimed_factor
+                       : before_.ros_time > 0 && ros_elapsed >= 0 && wall > 0 ? ros_elapsed / wall
+                                                                              : 0;
 
   using Level = diagnostic_msgs::DiagnosticStatus;
   if (now_.paused)

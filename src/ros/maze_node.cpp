@@ -115,7 +115,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   health_ = std::make_unique<Health>(nh);
 
   out_->publishScene(session_->simulation(), false);
-  writeBack(pnh_, settings_, session_->simulation().params());
+  writeBackSettings();
   const mm::Params& p = session_->simulation().params();
   const char* mode = settings_.lockstep > 0 ? "lockstep"
                      : settings_.own_clock  ? "own clock"
@@ -142,9 +142,19 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   }
 }
 
+void MazeNode::writeBackSettings() {
+  for (const std::string& key : writeBack(pnh_, settings_, session_->simulation().params()))
+    written_.insert(key);
+}
+
 MazeNode::~MazeNode() {
-  ros::param::del(pnh_.getNamespace());
-  if (any_given_) ros::param::set(pnh_.getNamespace(), given_);
+  // Only the keys it wrote: each back to its given value, or gone (what others set stays).
+  for (const std::string& key : written_) {
+    if (any_given_ && given_.getType() == XmlRpc::XmlRpcValue::TypeStruct && given_.hasMember(key))
+      pnh_.setParam(key, given_[key]);
+    else
+      pnh_.deleteParam(key);
+  }
 }
 
 // --- Time ----------------------------------------------------------------------------------------
@@ -445,7 +455,7 @@ std::string MazeNode::load(const std::string& maze) {
   logInput(marble_maze::SimInput::LOAD, input);
   out_->publishScene(session_->simulation(), true);
   reconfigure_->publishUpdate();
-  writeBack(pnh_, settings_, session_->simulation().params());
+  writeBackSettings();
   publishNow();
   ROS_INFO("marble_maze: loaded maze '%s'", session_->simulation().maze().name().c_str());
   warnIfLockstepRounds();
@@ -488,7 +498,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
                     overrides.end());
     overrides.emplace_back(key, value);
   }
-  writeBack(pnh_, settings_, session_->simulation().params());
+  writeBackSettings();
   marble_maze::SimInput input;
   input.params = mm::paramsText(session_->simulation().params());
   logInput(marble_maze::SimInput::PARAMS, input);

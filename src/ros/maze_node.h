@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "health.h"
@@ -78,8 +79,12 @@ class MazeNode {
   std::string valueOf(const std::string& key) const;
 
   ros::NodeHandle pnh_;
+  /// Writes the values in force back (writeBack), remembering the keys for the destructor.
+  void writeBackSettings();
+
   XmlRpc::XmlRpcValue given_;  // the private parameters as given, before any was written back
   bool any_given_ = false;
+  std::set<std::string> written_;  // the keys written back
   NodeSettings settings_;
   std::unique_ptr<marble_maze::Session> session_;
   SimClock clock_;

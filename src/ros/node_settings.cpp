@@ -172,31 +172,38 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   return s;
 }
 
-void writeBack(const ros::NodeHandle& pnh, const NodeSettings& s, const mm::Params& params) {
-  pnh.setParam("maze", s.maze);
-  pnh.setParam("update_rate", s.update_rate);
-  pnh.setParam("publish_rate", s.publish_rate);
-  pnh.setParam("marker_rate", s.marker_rate);
-  pnh.setParam("tilt_timeout", s.session.tilt_timeout);
-  pnh.setParam("rate_timeout", s.session.rate_timeout);
-  pnh.setParam("auto_reset", s.session.auto_reset);
-  pnh.setParam("world_frame", s.world_frame);
-  pnh.setParam("board_frame", s.board_frame);
-  pnh.setParam("marble_frame", s.marble_frame);
-  pnh.setParam("clock", s.own_clock);
-  pnh.setParam("real_time_factor", s.real_time_factor);
-  pnh.setParam("lockstep", s.lockstep);
+std::vector<std::string> writeBack(const ros::NodeHandle& pnh, const NodeSettings& s,
+                                   const mm::Params& params) {
+  std::vector<std::string> keys;
+  const auto put = [&](const std::string& key, const auto& value) {
+    pnh.setParam(key, value);
+    keys.push_back(key);
+  };
+  put("maze", s.maze);
+  put("update_rate", s.update_rate);
+  put("publish_rate", s.publish_rate);
+  put("marker_rate", s.marker_rate);
+  put("tilt_timeout", s.session.tilt_timeout);
+  put("rate_timeout", s.session.rate_timeout);
+  put("auto_reset", s.session.auto_reset);
+  put("world_frame", s.world_frame);
+  put("board_frame", s.board_frame);
+  put("marble_frame", s.marble_frame);
+  put("clock", s.own_clock);
+  put("real_time_factor", s.real_time_factor);
+  put("lockstep", s.lockstep);
   for (const mm::ParamInfo& info : mm::paramInfos()) {
     if (info.key == "start_position" && !params.has_start_position) continue;  // the start cell
     const std::string text = mm::getParam(params, info.key);
     double number = 0;
     if (info.type == mm::ParamInfo::Type::Whole && mm::parseFiniteNumber(text, &number))
-      pnh.setParam(info.key, static_cast<int>(number));
+      put(info.key, static_cast<int>(number));
     else if (info.type == mm::ParamInfo::Type::Number && mm::parseFiniteNumber(text, &number))
-      pnh.setParam(info.key, number);
+      put(info.key, number);
     else
-      pnh.setParam(info.key, text);
+      put(info.key, text);
   }
+  return keys;
 }
 
 }  // namespace marble_maze_ros

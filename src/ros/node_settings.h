@@ -30,7 +30,7 @@ struct NodeSettings {
 
 /// A private parameter of the node (`key`, resolved for messages) or `fallback` when it is not
 /// set; each throws std::runtime_error naming the parameter when it is of another type, or for
-/// a number, out of [min, max]. Every node of the package reads its parameters with them.
+/// a number, out of [min, max].
 double readNumber(const ros::NodeHandle& pnh, const std::string& key, double fallback, double min,
                   double max);
 std::string readText(const ros::NodeHandle& pnh, const std::string& key,
@@ -48,8 +48,9 @@ marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& setting
 /// world -> board -> marble: one empty, starting with '/', or named as another.
 void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& settings);
 
-/// Puts every value in force on the parameter server, under the node's private namespace.
-void writeBack(const ros::NodeHandle& pnh, const NodeSettings& settings,
-               const marble_maze::Params& params);
+/// Puts every value in force on the parameter server, under the node's private namespace;
+/// returns the keys it set.
+std::vector<std::string> writeBack(const ros::NodeHandle& pnh, const NodeSettings& settings,
+                                   const marble_maze::Params& params);
 
 }  // namespace marble_maze_ros

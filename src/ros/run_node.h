@@ -4,6 +4,7 @@
 
 #include <ros/ros.h>
 
+#include <csignal>
 #include <exception>
 
 namespace marble_maze_ros {
@@ -11,6 +12,9 @@ namespace marble_maze_ros {
 template <typename Node>
 int runNode(int argc, char** argv, const char* name) {
   ros::init(argc, argv, name);
+  // SIGTERM (kill, docker stop) ends a node as Ctrl-C does, through its destructors: roscpp
+  // handles only SIGINT.
+  std::signal(SIGTERM, [](int) { ros::requestShutdown(); });
   // The handles outlive a throwing constructor: with the last handle gone roscpp shuts down and
   // the FATAL message naming the bad parameter would never be printed.
   ros::NodeHandle nh, pnh("~");

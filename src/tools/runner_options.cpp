@@ -61,16 +61,18 @@ double parseDouble(const std::string& flag, const std::string& text) {
   return value;
 }
 
-/// Whether two outputs are one: standard output twice, or one file by two names.
+/// Whether two outputs are one: standard output twice, or one file by two names (/dev/null
+/// twice is no harm).
 bool sameOutput(const std::string& a, const std::string& b) {
   const auto name = [](const std::string& path) -> std::string {
-    if (path == "-" || path == "/dev/stdout") return "-";
+    if (path == "-" || path == "/dev/stdout" || path == "/dev/fd/1" || path == "/proc/self/fd/1")
+      return "-";
     std::error_code error;
     const std::filesystem::path canonical =
         std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);
     return error ? path : canonical.string();
   };
-  return name(a) == name(b);
+  return a != "/dev/null" && name(a) == name(b);
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ struct Latency {
   int delay = 0;
   int jitter = 0;
   unsigned seed = 1;
+  int state_age = 0;  ///< steps: how old each state the autopilot sees is (its age told)
 };
 
 struct Drive {
@@ -35,8 +36,8 @@ struct Drive {
   bool planned = false;
 };
 
-/// Runs the autopilot at 55 Hz for up to `limit` seconds of simulated time, its commands acting
-/// `latency` late.
+/// Runs the autopilot at 55 Hz for up to `limit` seconds of simulated time, the states it sees
+/// and its commands `latency` late.
 Drive drive(const Scene& scene, double limit, const AutopilotSettings& settings,
             const Latency& latency) {
   Simulation sim(scene);
@@ -46,12 +47,17 @@ Drive drive(const Scene& scene, double limit, const AutopilotSettings& settings,
   const int period = static_cast<int>(std::lround(1.0 / 55 / scene.params.step));
   std::mt19937 random(latency.seed);
   std::deque<std::pair<std::uint64_t, Tilt>> sent;  // commands on their way, by the step they act
+  std::deque<Observation> states;                   // the last state_age + 1 states, oldest first
   while (result.planned && sim.marble().phase == MarblePhase::Free && sim.time() < limit) {
+    Observation now;
+    now.position = sim.marbleInBoard().head<2>();
+    now.velocity = (sim.board().rotation().transpose() * sim.marble().velocity).head<2>();
+    now.tilt = {sim.board().roll(), sim.board().pitch()};
+    states.push_back(now);
+    if (states.size() > static_cast<std::size_t>(latency.state_age) + 1) states.pop_front();
     if (sim.steps() % period == 0) {
-      Observation seen;
-      seen.position = sim.marbleInBoard().head<2>();
-      seen.velocity = (sim.board().rotation().transpose() * sim.marble().velocity).head<2>();
-      seen.tilt = {sim.board().roll(), sim.board().pitch()};
+      Observation seen = states.front();
+      seen.age = static_cast<double>(states.size() - 1) * scene.params.step;
       std::uint64_t acts =
           sim.steps() + latency.delay + (latency.jitter > 0 ? random() % (latency.jitter + 1) : 0);
       if (!sent.empty()) acts = std::max(acts, sent.back().first);
@@ -125,21 +131,41 @@ TEST(Autopilot, ReachesTheClassicGoalFromTenRandomCells) {
 // 20 ms two wound about for 60 s.
 TEST(Autopilot, ReachesTheGoalWithCommandsUpTo80MsLate) {
   const Latency late{40, 40, 7};  // 40 to 80 ms late (a step is 1 ms)
-  int misses_with_lead = 0, misses_without = 0;
+  int misses_without = 0;
   for (const auto& [c, scene] : tenClassicStarts()) {
     AutopilotSettings settings = settingsFor(scene.params);
     const Drive d = drive(scene, 60, settings, late);
     EXPECT_EQ(d.phase, MarblePhase::AtGoal)
         << "from cell (" << c.i << ", " << c.j << ") after " << d.time << " s";
     EXPECT_LT(d.time, 20) << "from cell (" << c.i << ", " << c.j << ")";
-    misses_with_lead += d.phase != MarblePhase::AtGoal || d.time >= 20;
     settings.lead = 0;  // steering from where the marble was seen
     const Drive blind = drive(scene, 60, settings, late);
     misses_without += blind.phase != MarblePhase::AtGoal || blind.time >= 20;
   }
-  EXPECT_EQ(misses_with_lead, 0);
   // The latency is one that matters: without the lead the autopilot misses from several cells.
   EXPECT_GE(misses_without, 3);
+}
+
+// States that reach the autopilot late (a loaded machine, a slow link), with their age told as
+// the node tells it (ROS time now less the stamp): the autopilot steers from where the marble
+// will be and plays as fast as with fresh states. (Deciding which waypoints were reached from
+// where the marble was seen, while steering from where it will be, steered it back to column
+// centres it had passed: 14% slower at 40 ms, 47% at 60 ms.)
+TEST(Autopilot, PlaysAsFastWithStatesUpTo60MsOld) {
+  double fresh = 0;
+  for (const auto& [c, scene] : tenClassicStarts()) fresh += drive(scene, 60).time;
+  for (const int age : {20, 40, 60}) {
+    double total = 0;
+    for (const auto& [c, scene] : tenClassicStarts()) {
+      Latency old;
+      old.state_age = age;  // steps of 1 ms
+      const Drive d = drive(scene, 60, settingsFor(scene.params), old);
+      EXPECT_EQ(d.phase, MarblePhase::AtGoal)
+          << "states " << age << " ms old, from cell (" << c.i << ", " << c.j << ")";
+      total += d.time;
+    }
+    EXPECT_LT(total, 1.05 * fresh) << "states " << age << " ms old";
+  }
 }
 
 TEST(Autopilot, SaysSoWhenThereIsNoRoute) {

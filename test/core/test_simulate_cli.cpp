@@ -96,6 +96,9 @@ TEST(SimulateCli, AnInitialTiltInTheMazeFileOrASetOneOutranksTheProgramsFirstTil
 }
 
 TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
+  // (Outside the working directory: should the refusal fail, nothing is written there.)
+  const std::string csv = tempPath("same.csv");
+  const std::string csv_again = csv.substr(0, csv.rfind('/')) + "/./same.csv";
   const std::pair<std::string, std::string> cases[] = {
       {"--bogus 1", "unknown option '--bogus'"},
       {"--tilt 0.1", "--tilt: expected ROLL,PITCH"},
@@ -128,9 +131,9 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--tilt 0,0 --bag session.bag", "--tilt: not with --bag"},
       {"--bag session.bag --duration 3", "--duration: not with --bag"},
       // Two CSVs in one file would garble both; a third tilt value is not silently dropped.
-      {"--out t.csv --events t.csv", "--events: 't.csv' is --out's too"},
+      {"--out " + csv + " --events " + csv, "--events: '" + csv + "' is --out's too"},
       {"--out - --events -", "--events: '-' is --out's too"},
-      {"--out ./t.csv --events t.csv", "--events: 't.csv' is --out's too"},
+      {"--out " + csv_again + " --events " + csv, "--events: '" + csv + "' is --out's too"},
       {"--out - --events /dev/stdout", "--events: '/dev/stdout' is --out's too"},
       {"--tilt 0.1,0.1,0.1", "--tilt: expected ROLL,PITCH, got '0.1,0.1,0.1'"},
   };

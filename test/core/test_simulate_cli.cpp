@@ -98,7 +98,7 @@ TEST(SimulateCli, AnInitialTiltInTheMazeFileOrASetOneOutranksTheProgramsFirstTil
 TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
   // (Outside the working directory: should the refusal fail, nothing is written there.)
   const std::string csv = tempPath("same.csv");
-  const std::string csv_again = csv.substr(0, csv.rfind('/')) + "/./same.csv";
+  const std::string csv_again = csv.substr(0, csv.rfind('/')) + "/." + csv.substr(csv.rfind('/'));
   const std::pair<std::string, std::string> cases[] = {
       {"--bogus 1", "unknown option '--bogus'"},
       {"--tilt 0.1", "--tilt: expected ROLL,PITCH"},

@@ -2,28 +2,33 @@
 // time, so that the marble travels with nobody at the controls.
 #include <ros/ros.h>
 
+#include <stdexcept>
+
 #include "marble_maze/BoardTilt.h"
 #include "marble_maze/tilt_schedule.h"
+#include "node_settings.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "tilt_program");
   ros::NodeHandle nh, pnh("~");
   std::string path;
-  if (!pnh.getParam("program", path)) {
-    ROS_FATAL("%s: required: a CSV file of rows t,roll,pitch", pnh.resolveName("program").c_str());
-    return 1;
-  }
-  const bool loop = pnh.param("loop", true);
-  const double rate = pnh.param("rate", 20.0);
-  if (!(rate > 0 && rate <= 1000)) {
-    ROS_FATAL("%s: expected 0 < rate <= 1000 Hz, got %g", pnh.resolveName("rate").c_str(), rate);
-    return 1;
-  }
+  bool loop = true;
+  double rate = 20;
   marble_maze::TiltSchedule program;
-  try {
-    program = marble_maze::TiltSchedule::load(path);
+  try {  // (a parameter of the wrong type is named, as the other nodes name theirs)
+    path = marble_maze_ros::readText(pnh, "program", "");
+    if (path.empty())
+      throw std::runtime_error(pnh.resolveName("program") +
+                               ": required: a CSV file of rows t,roll,pitch");
+    loop = marble_maze_ros::readFlag(pnh, "loop", loop);
+    rate = marble_maze_ros::readNumber(pnh, "rate", rate, 0.1, 1000);
+    try {
+      program = marble_maze::TiltSchedule::load(path);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(pnh.resolveName("program") + ": " + e.what());
+    }
   } catch (const std::exception& e) {
-    ROS_FATAL("%s: %s", pnh.resolveName("program").c_str(), e.what());
+    ROS_FATAL("%s", e.what());
     return 1;
   }
   ros::Publisher pub = nh.advertise<marble_maze::BoardTilt>("tilt", 10);

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""rostest of marble_maze_node's start-up checks (run by bad_param.test), and the replay's and
-the autopilot's.
+"""rostest of marble_maze_node's start-up checks (run by bad_param.test), and the replay's, the
+autopilot's and the tilt program's.
 
 The test starts the node itself, as a child process under the rostest master, with one bad
 private parameter at a time, and checks that it exits by itself (within EXIT_TIMEOUT of wall
@@ -156,7 +156,7 @@ class BadParamTest(unittest.TestCase):
     def test_a_flag_of_the_wrong_type(self):
         self.check_refused("bp_eighteen", ["_clock:=sometimes"], "clock", "true or false")
 
-    def test_the_replay_and_the_autopilot_refuse_a_parameter_of_the_wrong_type(self):
+    def test_the_replay_the_autopilot_and_the_tilt_program_refuse_a_parameter_of_the_wrong_type(self):
         # (They took a word for a number, or a number for a flag, as their default, silently.)
         self.check_refused("bp_thirty", ["_bag:=/nonexistent.bag", "_rate:=fast"], "rate",
                            "expected a number", node="replay")
@@ -164,6 +164,8 @@ class BadParamTest(unittest.TestCase):
                            "true or false", node="replay")
         self.check_refused("bp_thirtytwo", ["_start_delay:=soon"], "start_delay",
                            "expected a number", node="autopilot")
+        self.check_refused("bp_thirtythree", ["_program:=/nonexistent.csv", "_loop:=maybe"],
+                           "loop", "true or false", node="tilt_program")
 
     def test_a_maze_file_of_garbage_and_one_of_twenty_megabytes(self):
         with tempfile.NamedTemporaryFile("wb", suffix=".yaml", delete=False) as garbage:

@@ -316,15 +316,15 @@ class RecordReplayTest(unittest.TestCase):
         finally:
             master.close()
         # The board follows the commands as recorded: a command that reaches the node after
-        # /clock has passed its stamp acts one step late, which moves the board by at most its
-        # rate limit times a step (2 mrad), fading as the servo catches up. The marble's play is
+        # /clock has passed its stamp acts a step or more late, which moves the board by at most
+        # its rate limit times those steps (2 mrad each), fading as the servo catches up. The marble's play is
         # chaotic, so such a step can part its path from the recording (identical in most runs,
         # 0.25 m apart in one of four full `make test` runs): it is reported, not asserted; the
         # replay node, which has no such race, is held to every bit above.
         # The board is compared until the marble first finishes in either run: the reset that
         # follows levels the board at a time the marble's play decides (seen once: 0.066 rad).
         original = {m.header.stamp: m for m in states(plain)}
-        worst, worst_tilt, compared, tilts = 0.0, 0.0, 0, 0
+        worst, worst_tilt, compared, tilts, close = 0.0, 0.0, 0, 0, 0
         finished = lambda m: m.in_hole or m.at_goal or m.off_board
         before_a_finish = True
         for m in states(out):
@@ -337,12 +337,18 @@ class RecordReplayTest(unittest.TestCase):
             before_a_finish = before_a_finish and not (finished(o) or finished(m))
             if before_a_finish:
                 tilts += 1
-                worst_tilt = max(worst_tilt, abs(o.roll - m.roll), abs(o.pitch - m.pitch))
+                apart = max(abs(o.roll - m.roll), abs(o.pitch - m.pitch))
+                worst_tilt = max(worst_tilt, apart)
+                close += apart < 0.005
         print("plain rosbag play: %d states compared, the board (in the first %d) %.3g rad and "
               "the marble %.3g m apart at most" % (compared, tilts, worst_tilt, worst))
         self.assertGreater(compared, 500)
         self.assertGreater(tilts, 200)
-        self.assertLess(worst_tilt, 0.005)
+        # Nearly every state within 5 mrad; on a loaded machine a command has acted some 15 steps
+        # late (0.031 rad, the autopilot's commands changing fast), never further apart than a
+        # board that missed commands altogether would be (0.1 rad and more).
+        self.assertGreater(close, 0.95 * tilts)
+        self.assertLess(worst_tilt, 0.05)
 
         # Twice in a loop: time jumps back, the node starts over, tf listeners see no error.
         master = Master()

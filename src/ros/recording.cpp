@@ -104,9 +104,7 @@ Replayer::Replayer(const Recording& recording, const Overrides& overrides)
   const mm::SimSnapshot& snapshot = recording.snapshot;
   const auto recorded_ns = std::llround(mm::paramsFromText(snapshot.params).step * 1e9);
   clock_.anchor(snapshot.anchor_stamp, snapshot.anchor_step, snapshot.anchor_time, recorded_ns);
-  // Under another step (--set step=...) the steps go on from the snapshot's, at its stamp.
-  if (stepNs() != recorded_ns)
-    clock_.anchor(stamp(), session_->steps(), session_->simulation().time(), stepNs());
+  followStep();  // under another step (--set step=...), on from the snapshot's stamp
   scheduleInputs();
 }
 

@@ -54,7 +54,8 @@ class Replayer {
 
  private:
   marble_maze::Params paramsOf(const std::string& text) const;
-  /// After a load or a reconfigure: the clock goes on at the step length now in force.
+  /// After a load, a reconfigure or a step set over the recorded one: the clock goes on at the
+  /// step length now in force, from where the steps stand.
   void followStep();
   /// Works out the step of the replay at which each input acts (due_).
   void scheduleInputs();

@@ -19,21 +19,19 @@ TiltInput::TiltInput(ros::NodeHandle& nh, Handler handler,
 
 void TiltInput::checkNoneLost(const std::string& topic, const std::string& publisher,
                               const std_msgs::Header& header) {
-  const auto [last, first] = last_seq_.try_emplace(topic + " " + publisher, header.seq);
-  const std::uint32_t expected = last->second + 1;
-  last->second = header.seq;
-  if (first || header.seq <= expected) return;  // (a lower one: the publisher restarted)
-  lost_ += header.seq - expected;
-  lost_total_ += header.seq - expected;
+  const std::uint64_t lost = gaps_.take(topic + " " + publisher, header.seq);
+  if (lost == 0) return;
+  lost_ += lost;
+  lost_total_ += lost;
   // Said at most once a second of wall time (ROS time may run a thousand times faster), with
   // every command lost since.
   const ros::WallTime now = ros::WallTime::now();
   if (!said_lost_.isZero() && (now - said_lost_).toSec() < 1.0) return;
   said_lost_ = now;
   ROS_WARN(
-      "%s: %llu commands from %s lost on the way (the last before header.seq %u): a "
-      "burst larger than the publisher's queue or the node's (1000)?",
-      topic.c_str(), static_cast<unsigned long long>(lost_), publisher.c_str(), header.seq);
+      "%s: %llu commands from %s lost on the way (a gap in their header.seq): a burst larger "
+      "than the publisher's queue or the node's (1000)?",
+      topic.c_str(), static_cast<unsigned long long>(lost_), publisher.c_str());
   lost_ = 0;
 }
 

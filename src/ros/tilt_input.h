@@ -1,22 +1,22 @@
 // The board's commands from `tilt` (target angles) and `tilt_rate` (rates): refused with a
 // warning naming the topic and field when not finite, clamped with a warning beyond the limits,
 // and handed on with their stamp (zero: now). A command the handler holds for later (stamped
-// ahead of the simulation's clock) is told at once, with how far ahead; so are commands lost on
-// the way (a gap in a publisher's header.seq: its queue overflowed). Counts them, for the
-// diagnostics.
+// ahead of the simulation's clock) is told at once, with how far ahead; commands lost on the way
+// (a gap in a publisher's header.seq: its queue overflowed) are told once the gap is sure (see
+// SeqGaps). Counts them, for the diagnostics.
 #pragma once
 
 #include <ros/ros.h>
 
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <string>
 
 #include "marble_maze/BoardTilt.h"
 #include "marble_maze/BoardTiltRate.h"
 #include "marble_maze/params.h"
 #include "marble_maze/session.h"
+#include "seq_gaps.h"
 
 namespace marble_maze_ros {
 
@@ -40,7 +40,7 @@ class TiltInput {
  private:
   void onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& event);
   void onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltRate>& event);
-  /// Warns when `header` is not the one after the last from its publisher on `topic`.
+  /// Counts and warns about the commands that `header`'s seq shows lost (see SeqGaps).
   void checkNoneLost(const std::string& topic, const std::string& publisher,
                      const std_msgs::Header& header);
   void pass(const std::string& topic, const std_msgs::Header& header,
@@ -52,8 +52,8 @@ class TiltInput {
   std::string tilt_topic_, rate_topic_;  // kept: a warning names them long after subscribing
   std::uint64_t received_ = 0;
   ros::Time last_;
-  std::map<std::string, std::uint32_t> last_seq_;  // by topic and publisher
-  std::uint64_t lost_ = 0;                         // commands lost since the last warning
+  SeqGaps gaps_;
+  std::uint64_t lost_ = 0;  // commands lost since the last warning
   std::uint64_t lost_total_ = 0;
   ros::WallTime said_lost_;
 };

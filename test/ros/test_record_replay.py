@@ -15,7 +15,10 @@ rosbag play), each on a master of its own:
   6. re-simulate the first at half the step: each input acts at its recorded simulated time;
      a bag without the states fails --check, one without the inputs is refused, one whose
      first snapshot comes before the scene replays from the next;
-  7. the node, stopped, leaves on the parameter server only the parameters it was given.
+  7. the node, stopped, leaves on the parameter server only the parameters it was given;
+  8. `rosbag play` of tilt commands recorded from two publishers, which it sends under one name
+     with their two series of header.seq interleaved, is no loss to the node; a series with a
+     gap is, and the node says how many.
 
 Plain unittest in the workspace given by MARBLE_MAZE_WS: python3 test/ros/test_record_replay.py;
 with --gtest_output=xml:FILE it writes JUnit XML for catkin. About 2 minutes.
@@ -374,6 +377,45 @@ class RecordReplayTest(unittest.TestCase):
         self.assertGreater(int(said.split("lookups")[1].split()[0]), 100, said[-2000:])
         for error in ("TF_REPEATED_DATA", "TF_OLD_DATA"):
             self.assertNotIn(error, said)
+
+    def test_8_two_recorded_publishers_are_no_loss_and_a_gap_is(self):
+        from marble_maze.msg import BoardTilt
+
+        def bag_of(name, seqs):
+            path = os.path.join(self.dir, name)
+            with rosbag.Bag(path, "w") as bag:
+                for i, seq in enumerate(seqs):
+                    msg = BoardTilt(roll=0.01 * math.sin(0.05 * i), pitch=0.0)
+                    msg.header.seq = seq  # stamp zero: act at once
+                    bag.write("tilt", msg, rospy.Time(1000 + 0.01 * i))
+            return path
+
+        # Two agents, at seq 10 and 500 on, in bursts of 5; then one agent losing 30 at once.
+        two = bag_of("two_publishers.bag",
+                     [first + 5 * (i // 10) + i % 5 for i in range(400)
+                      for first in [500 if i % 10 < 5 else 10]])
+        gap = bag_of("gap.bag", list(range(0, 100)) + list(range(130, 430)))
+        master = Master()
+        log_path = os.path.join(self.dir, "seq_node.log")
+        log = open(log_path, "w")
+        try:
+            node = master.start(["rosrun", "marble_maze", "marble_maze_node"], log=log)
+            time.sleep(3)
+            master.start(["rosbag", "play", two]).wait(timeout=60)
+            time.sleep(1)
+            with open(log_path) as f:
+                after_two = f.read()
+            master.start(["rosbag", "play", gap]).wait(timeout=60)
+            time.sleep(1)
+            master.stop(node)
+        finally:
+            master.close()
+            log.close()
+        with open(log_path) as f:
+            said = f.read()
+        self.assertNotIn("lost on the way", after_two)
+        self.assertIn("30 commands from /play_", said[len(after_two):])
+        self.assertEqual(said.count("lost on the way"), 1, said[-2000:])
 
     def test_5_the_bag_lost_nothing(self):
         # roscpp numbers each publisher's messages (header.seq): the recorded states and events

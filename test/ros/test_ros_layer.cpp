@@ -6,6 +6,7 @@
 
 #include "../../src/ros/maze_description.h"
 #include "../../src/ros/maze_markers.h"
+#include "../../src/ros/seq_gaps.h"
 #include "../../src/ros/sim_clock.h"
 #include "marble_maze/maze_file.h"
 
@@ -23,6 +24,73 @@ TEST(SimClock, StepsHaveExactStampsAndCommandsTakeTheFirstStepAtOrAfterTheirStam
   EXPECT_EQ(clock.stepsDue(ros::Time(101.0005)), 3000u);
   EXPECT_EQ(onGrid(ros::Time(5, 1234567), 1000000).toNSec(), ros::Time(5, 1000000).toNSec());
   EXPECT_EQ(onGrid(ros::Time(5, 1234567), 1000000, true).toNSec(), ros::Time(5, 2000000).toNSec());
+}
+
+/// Feeds `seqs` from one source; returns the messages they show lost, all told.
+std::uint64_t lostIn(SeqGaps* gaps, const std::vector<std::uint32_t>& seqs,
+                     const std::string& source = "/tilt /agent") {
+  std::uint64_t lost = 0;
+  for (std::uint32_t seq : seqs) lost += gaps->take(source, seq);
+  return lost;
+}
+
+/// `count` seqs from `first` on, one after another.
+std::vector<std::uint32_t> run(std::uint32_t first, std::uint32_t count) {
+  std::vector<std::uint32_t> seqs(count);
+  for (std::uint32_t i = 0; i < count; ++i) seqs[i] = first + i;
+  return seqs;
+}
+
+std::vector<std::uint32_t> operator+(std::vector<std::uint32_t> a,
+                                     const std::vector<std::uint32_t>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(SeqGaps, CountsAGapOnceTheSeriesBeforeItHasStayedQuiet) {
+  SeqGaps gaps;
+  // 10..19, then 40 on: 20 lost, told by the kQuiet-th message after 40, not before.
+  EXPECT_EQ(lostIn(&gaps, run(10, 10) + run(40, SeqGaps::kQuiet)), 0u);
+  EXPECT_EQ(lostIn(&gaps, run(40 + SeqGaps::kQuiet, 1)), 20u);
+  // Two more gaps of 5 and 7 in one series, each told once.
+  SeqGaps more;
+  EXPECT_EQ(lostIn(&more, run(0, 10) + run(15, 10) + run(32, 3 * SeqGaps::kQuiet)), 12u);
+  // Nothing lost: nothing told.
+  SeqGaps none;
+  EXPECT_EQ(lostIn(&none, run(7, 1000)), 0u);
+}
+
+TEST(SeqGaps, TwoPublishersUnderOneNameAreNoLoss) {
+  // rosbag play sends two recorded agents' commands under its own name, with their seqs: one
+  // at 10, the other at 500, interleaved one by one and in bursts of up to 50.
+  for (std::uint32_t burst : {1u, 7u, 50u}) {
+    SeqGaps gaps;
+    std::vector<std::uint32_t> seqs;
+    for (std::uint32_t i = 0; i < 20; ++i)
+      seqs = seqs + run(500 + i * burst, burst) + run(10 + i * burst, burst);
+    EXPECT_EQ(lostIn(&gaps, seqs + run(10 + 20 * burst, 3 * SeqGaps::kQuiet)), 0u) << burst;
+  }
+  // Three, and one of them losing 30 of its own: those are told.
+  SeqGaps gaps;
+  std::vector<std::uint32_t> seqs;
+  for (std::uint32_t i = 0; i < 300; ++i) {
+    const std::uint32_t skip = i >= 100 ? 30 : 0;
+    seqs = seqs + run(1000 + i, 1) + run(10 + i + skip, 1) + run(5000 + i, 1);
+  }
+  EXPECT_EQ(lostIn(&gaps, seqs), 30u);
+}
+
+TEST(SeqGaps, ALoopOrARestartIsNoLossAndMemoryStaysBounded) {
+  SeqGaps gaps;
+  // rosbag play -l: the same seqs again; a publisher restarted: from 0.
+  EXPECT_EQ(lostIn(&gaps, run(100, 300) + run(100, 300) + run(0, 300)), 0u);
+  // A publisher that leaves seq at 0.
+  EXPECT_EQ(lostIn(&gaps, std::vector<std::uint32_t>(500, 0)), 0u);
+  // Many publishers come and go (rostopic pub, each with a new name): a bounded number kept.
+  for (int i = 0; i < 1000; ++i) gaps.take("/tilt /rostopic_" + std::to_string(i), 0);
+  EXPECT_LE(gaps.sources(), SeqGaps::kMostSources);
+  // A gap is still told after that.
+  EXPECT_EQ(lostIn(&gaps, run(0, 10) + run(20, 2 * SeqGaps::kQuiet), "/tilt /late"), 10u);
 }
 
 TEST(MazeDescription, DescribesTheMazeAndReadsBackTheSameMaze) {

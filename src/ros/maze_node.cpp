@@ -32,18 +32,24 @@ std::string text(double value) {
   return out.str();
 }
 
-/// Why steps of `step` seconds cannot make up a lockstep `period` (more of them a command than a
-/// call may take, which would hold the node up), or "".
-std::string whyNotLockstep(double period, const mm::Params& params) {
-  const double steps = period / params.step;
+/// Why `steps` steps of `params` are more than one command may take on (a lockstep tilt, a `step`
+/// call): more than kMostStepsPerCall steps or substeps, which would hold the node up, its
+/// services unanswered. "" when they are not. `asked` says what asks for them, after the
+/// argument's name.
+std::string whyTooMuchWork(double steps, const mm::Params& params, const std::string& asked) {
   if (steps > kMostStepsPerCall)
-    return "step: " + text(params.step) + " s makes ~lockstep's " + text(period) + " s more than " +
-           std::to_string(kMostStepsPerCall) + " steps a command";
+    return asked + " more than " + std::to_string(kMostStepsPerCall) + " steps a command";
   if (steps * params.substeps > kMostStepsPerCall)
-    return "substeps: " + std::to_string(params.substeps) + " a step of " + text(params.step) +
-           " s make ~lockstep's " + text(period) + " s more than " +
+    return asked + " (of " + std::to_string(params.substeps) + " substeps each) more than " +
            std::to_string(kMostStepsPerCall) + " substeps a command";
   return "";
+}
+
+/// Why steps of `step` seconds cannot make up a lockstep `period`, or "".
+std::string whyNotLockstep(double period, const mm::Params& params) {
+  return whyTooMuchWork(
+      period / params.step, params,
+      "step: " + text(params.step) + " s makes ~lockstep's " + text(period) + " s");
 }
 
 /// Why the node cannot run at a new `step` (a maze loaded, a value changed live), as it could not
@@ -249,7 +255,7 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
   const auto most = static_cast<std::int64_t>(
       std::min(std::max(kMaxCatchUp, 5.0 / settings_.update_rate) / step(), mostStepsPerCall()));
   if (due > most) {
-    ROS_WARN_THROTTLE(5.0, "simulation fell %.3f s behind ROS time; skipping ahead",
+    ROS_WARN_THROTTLE(5.0, "simulation fell %.3g s behind ROS time; skipping ahead",
                       (due - most) * step());
     skipped_steps_ += due - most;
     // The steps taken now end at now's step on the grid.
@@ -405,9 +411,9 @@ std::string MazeNode::resume() {
 
 std::string MazeNode::stepPaused(std::uint32_t steps, marble_maze::MarbleState* after) {
   if (!session_->paused()) return "steps: only while paused (the simulation runs): call pause";
-  if (steps > kMostStepsPerCall)
-    return "steps: at most " + std::to_string(kMostStepsPerCall) + " a call, got " +
-           std::to_string(steps);
+  const std::string why = whyTooMuchWork(steps, session_->simulation().params(),
+                                         "steps: " + std::to_string(steps) + " steps are");
+  if (!why.empty()) return why;
   runSteps(steps);
   publishNow();
   *after = out_->stateOf(session_->simulation(), stampNow());

@@ -15,7 +15,7 @@
     a value changed live holds over a maze loaded later;
   - /diagnostics carries the real-time factor; odom is published in world with child marble;
   - a microsecond step of 1000 substeps set live leaves the node answering its services within
-    10 s, /diagnostics saying it fell behind.
+    10 s, /diagnostics saying it fell behind; a `step` call of more than 1e7 substeps is refused.
 """
 import math
 import os
@@ -227,7 +227,7 @@ class ServicesTest(unittest.TestCase):
         # A microsecond step of 1000 substeps, set live (within the documented ranges): a second
         # of ROS time is a billion substeps. The node takes at most a million a callback and
         # skips the rest with a warning, so that its services are answered (a pause took 1 min
-        # 40 s when it caught up a second at a time).
+        # 40 s when it caught up a second at a time); a `step` call of 2e7 substeps is refused.
         client = Client(NODE, timeout=20)
         client.update_configuration({"step": 1e-6, "substeps": 1000})
         try:
@@ -235,6 +235,14 @@ class ServicesTest(unittest.TestCase):
             begin = time.time()
             self.assertTrue(call("pause", Trigger).success)
             self.assertLess(time.time() - begin, 10)
+            # Paused, a `step` call is held to the same work as a lockstep command: 1e7 substeps.
+            begin = time.time()
+            costly = call("step", Step, 20000)
+            self.assertFalse(costly.success)
+            self.assertIn("steps: 20000 steps are (of 1000 substeps each) more than 10000000 "
+                          "substeps a command", costly.message)
+            self.assertLess(time.time() - begin, 10)
+            self.assertTrue(call("step", Step, 2).success)
             self.assertTrue(call("resume", Trigger).success)
             after = rospy.get_rostime() + rospy.Duration(1.0)
             behind = self.diagnostics.wait(

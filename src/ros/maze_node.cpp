@@ -4,8 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 #include <stdexcept>
 
 namespace marble_maze_ros {
@@ -20,53 +18,10 @@ constexpr double kMaxCatchUp = 1.0;  // s
 // With ~clock, each run of steps lasts at most this long, so that commands and services are
 // answered in between.
 constexpr double kFreeRunSlice = 0.005;  // s of wall time
-constexpr std::uint32_t kMostStepsPerCall = 10000000;
 // What one callback following ROS time or a real-time factor may take on, in substeps (some 0.1
 // to 0.3 s of work): a tiny step with many substeps, set live, would otherwise hold the node up
 // for minutes catching up a second, its services unanswered.
 constexpr double kMostSubstepsPerCall = 1e6;
-
-std::string text(double value) {
-  std::ostringstream out;
-  out << std::setprecision(15) << value;  // what a user typed, without binary noise
-  return out.str();
-}
-
-/// Why `steps` steps of `params` are more than one command may take on (a lockstep tilt, a `step`
-/// call): more than kMostStepsPerCall steps or substeps, which would hold the node up, its
-/// services unanswered. "" when they are not. `asked` says what asks for them, after the
-/// argument's name.
-std::string whyTooMuchWork(double steps, const mm::Params& params, const std::string& asked) {
-  if (steps > kMostStepsPerCall)
-    return asked + " more than " + std::to_string(kMostStepsPerCall) + " steps a command";
-  if (steps * params.substeps > kMostStepsPerCall)
-    return asked + " (of " + std::to_string(params.substeps) + " substeps each) more than " +
-           std::to_string(kMostStepsPerCall) + " substeps a command";
-  return "";
-}
-
-/// Why steps of `step` seconds cannot make up a lockstep `period`, or "".
-std::string whyNotLockstep(double period, const mm::Params& params) {
-  return whyTooMuchWork(
-      period / params.step, params,
-      "step: " + text(params.step) + " s makes ~lockstep's " + text(period) + " s");
-}
-
-/// Why the node cannot run at a new `step` (a maze loaded, a value changed live), as it could not
-/// start at it: too long a lockstep period, or fewer steps a second than a rate of messages of
-/// simulated time asks for. "" when it can.
-std::string whyNotStep(const NodeSettings& settings, const mm::Params& params) {
-  const std::string why = whyNotLockstep(settings.lockstep, params);
-  if (!why.empty()) return why;
-  const double per_second = 1.0 / params.step;
-  for (const auto& [key, rate] :
-       {std::pair<const char*, double>{"~publish_rate", settings.publish_rate},
-        {"~marker_rate", settings.marker_rate}})
-    if (rate > per_second * (1 + 1e-9))
-      return "step: " + text(params.step) + " s makes " + text(per_second) +
-             " steps a second, fewer than " + key + "'s " + text(rate) + " Hz";
-  return "";
-}
 
 }  // namespace
 
@@ -79,8 +34,6 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   } catch (const mm::ParamError& e) {  // the marble where it cannot be: the key is ours
     throw std::runtime_error(pnh.getNamespace() + "/" + e.what());
   }
-  const std::string why = whyNotLockstep(settings_.lockstep, session_->simulation().params());
-  if (!why.empty()) throw std::runtime_error(pnh.getNamespace() + "/" + why);
   maze_text_ = scene.text;
   maze_source_ = scene.source;
   started_ = ros::WallTime::now();
@@ -440,7 +393,7 @@ std::string MazeNode::load(const std::string& maze) {
   mm::Scene scene;
   try {
     scene = sceneFor(maze, settings_);
-    const std::string why = whyNotStep(settings_, scene.params);
+    const std::string why = whyNotRunnable(settings_, scene.params);
     if (!why.empty()) return "maze: " + maze + ": " + why;
     const ros::Time stamp = stampNow();
     session_->load(scene);
@@ -481,7 +434,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
       }
     }
     mm::validate(params);
-    const std::string why = whyNotStep(settings_, params);
+    const std::string why = whyNotRunnable(settings_, params);
     if (!why.empty()) return why;
     const ros::Time stamp = stampNow();
     session_->setParams(params);
@@ -513,7 +466,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
 }
 
 std::string MazeNode::valueOf(const std::string& key) const {
-  if (key == "real_time_factor") return text(settings_.real_time_factor);
+  if (key == "real_time_factor") return exactText(settings_.real_time_factor);
   return mm::getParam(session_->simulation().params(), key);
 }
 

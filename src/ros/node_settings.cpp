@@ -159,17 +159,41 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   } catch (const mm::ParamError& e) {
     throw std::runtime_error(prefix + e.what());
   }
-  // Rates of simulated time: at most one message a step.
-  const double steps_per_second = 1.0 / scene->params.step;
-  for (const auto& [key, rate] : {std::pair<const char*, double>{"publish_rate", s.publish_rate},
-                                  {"marker_rate", s.marker_rate}})
-    if (rate > steps_per_second * (1 + 1e-9)) {
-      std::ostringstream msg;
-      msg << pnh.resolveName(key) << ": " << rate << " Hz is more than one a step ("
-          << steps_per_second << " Hz at step " << scene->params.step << " s)";
-      throw std::runtime_error(msg.str());
-    }
+  const std::string why = whyNotRunnable(s, scene->params);
+  if (!why.empty()) throw std::runtime_error(prefix + why);
   return s;
+}
+
+std::string exactText(double value) {
+  std::ostringstream out;
+  out << std::setprecision(15) << value;
+  return out.str();
+}
+
+std::string whyTooMuchWork(double steps, const mm::Params& params, const std::string& asked) {
+  const std::string most = std::to_string(kMostStepsPerCommand);
+  if (steps > kMostStepsPerCommand) return asked + " more than " + most + " steps a command";
+  if (steps * params.substeps > kMostStepsPerCommand)
+    return asked + " (of " + std::to_string(params.substeps) + " substeps each) more than " + most +
+           " substeps a command";
+  return "";
+}
+
+std::string whyNotRunnable(const NodeSettings& settings, const mm::Params& params) {
+  const std::string step = "step: " + exactText(params.step) + " s makes ";
+  const std::string why =
+      whyTooMuchWork(settings.lockstep / params.step, params,
+                     step + "~lockstep's " + exactText(settings.lockstep) + " s");
+  if (!why.empty()) return why;
+  // Rates of simulated time: at most one message a step.
+  const double per_second = 1.0 / params.step;
+  for (const auto& [key, rate] :
+       {std::pair<const char*, double>{"~publish_rate", settings.publish_rate},
+        {"~marker_rate", settings.marker_rate}})
+    if (rate > per_second * (1 + 1e-9))
+      return step + exactText(per_second) + " steps a second, fewer than " + key + "'s " +
+             exactText(rate) + " Hz";
+  return "";
 }
 
 std::vector<std::string> writeBack(const ros::NodeHandle& pnh, const NodeSettings& s,

@@ -5,6 +5,7 @@
 
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,21 @@ marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& setting
 /// Throws std::runtime_error naming the parameter when the frames do not make the chain
 /// world -> board -> marble: one empty, starting with '/', or named as another.
 void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& settings);
+
+/// The most one command (a lockstep tilt, a `step` call) may take on, in steps and in substeps:
+/// more would hold the node up, its services unanswered, for seconds.
+constexpr std::uint32_t kMostStepsPerCommand = 10000000;
+/// Why `steps` steps of `params` are more than one command may take on, or "". `asked` says what
+/// asks for them, from the argument's name on.
+std::string whyTooMuchWork(double steps, const marble_maze::Params& params,
+                           const std::string& asked);
+/// Why the node cannot run `params` with these settings, or "": a lockstep period of more steps
+/// or substeps than a command may take, or a rate of messages of simulated time (~publish_rate,
+/// ~marker_rate) above one a step. Checked at start and when a maze is loaded or a value changed
+/// live, with the same words.
+std::string whyNotRunnable(const NodeSettings& settings, const marble_maze::Params& params);
+/// A number as a user typed it, without binary noise (0.1, not 0.10000000000000001).
+std::string exactText(double value);
 
 /// Puts every value in force on the parameter server, under the node's private namespace;
 /// returns the keys it set.

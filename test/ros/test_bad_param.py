@@ -148,6 +148,13 @@ class BadParamTest(unittest.TestCase):
         # and one of more steps a command than a call may take
         self.check_refused("bp_twentythree", ["_lockstep:=60", "_step:=0.000001"], "/step",
                            "lockstep", "more than 10000000 steps a command")
+        # or of more substeps (refused with the words a live change gets)
+        self.check_refused("bp_twentyfour", ["_lockstep:=20", "_substeps:=1000"], "/step",
+                           "lockstep", "(of 1000 substeps each) more than 10000000 substeps")
+
+    def test_a_rate_above_one_message_a_step(self):
+        self.check_refused("bp_twentyfive", ["_publish_rate:=2000"], "/step: 0.001 s makes",
+                           "fewer than ~publish_rate's 2000 Hz")
 
     def test_a_misspelt_built_in_maze_lists_the_built_in_ones(self):
         self.check_refused("bp_twentytwo", ["_maze:=clasic"], "maze", "clasic",

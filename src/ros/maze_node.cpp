@@ -148,6 +148,12 @@ void MazeNode::reanchor(const ros::Time& origin) {
   }
 }
 
+void MazeNode::keepingTime(const std::function<void()>& change) {
+  const ros::Time stamp = stampNow();
+  change();
+  if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);
+}
+
 void MazeNode::logInput(std::uint8_t kind, marble_maze::SimInput input) {
   log_->input(input, kind, session_->steps(), stampNow());
   if (kind != marble_maze::SimInput::PAUSE && kind != marble_maze::SimInput::RESUME)
@@ -395,9 +401,7 @@ std::string MazeNode::load(const std::string& maze) {
     scene = sceneFor(maze, settings_);
     const std::string why = whyNotRunnable(settings_, scene.params);
     if (!why.empty()) return "maze: " + maze + ": " + why;
-    const ros::Time stamp = stampNow();
-    session_->load(scene);
-    if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length
+    keepingTime([&] { session_->load(scene); });
   } catch (const mm::MazeFileError& e) {
     return std::string("maze: ") + e.what();
   } catch (const mm::ParamError& e) {
@@ -436,9 +440,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
     mm::validate(params);
     const std::string why = whyNotRunnable(settings_, params);
     if (!why.empty()) return why;
-    const ros::Time stamp = stampNow();
-    session_->setParams(params);
-    if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);  // a new step length
+    keepingTime([&] { session_->setParams(params); });
   } catch (const mm::ParamError& e) {
     return e.what();
   }

@@ -13,6 +13,7 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -53,6 +54,9 @@ class MazeNode {
   void updateHealth();
   /// Ties the current step to ROS time `origin`, and says so on `inputs`.
   void reanchor(const ros::Time& origin);
+  /// Runs `change` (another maze, other physics); a step of another length from then on is
+  /// re-anchored where the session stood, so that its steps keep to ROS time's rate.
+  void keepingTime(const std::function<void()>& change);
   std::int64_t stepNs() const { return std::llround(step() * 1e9); }
   /// How many steps one callback may take, following ROS time or a real-time factor, at the
   /// substeps in force: more are skipped, with a warning.

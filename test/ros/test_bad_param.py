@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """rostest of marble_maze_node's start-up checks (run by bad_param.test), and the replay's, the
-autopilot's and the tilt program's.
+autopilot's and the tilt program's; and that SIGTERM ends the node and the tilt program cleanly.
 
 The test starts the node itself, as a child process under the rostest master, with one bad
 private parameter at a time, and checks that it exits by itself (within EXIT_TIMEOUT of wall
@@ -173,6 +173,25 @@ class BadParamTest(unittest.TestCase):
                            "expected a number", node="autopilot")
         self.check_refused("bp_thirtythree", ["_program:=/nonexistent.csv", "_loop:=maybe"],
                            "loop", "true or false", node="tilt_program")
+
+    def test_sigterm_ends_every_node_as_ctrl_c_does(self):
+        # (kill, docker stop): through the destructors, with status 0, not killed by the signal.
+        program = os.path.join(roslib.packages.get_pkg_dir(PKG), "config", "demo_tilt.csv")
+        for name, node, params in [("bp_forty", "marble_maze_node", []),
+                                   ("bp_fortyone", "tilt_program", ["_program:=" + program])]:
+            process = self.start(name, *params, node=node)
+            try:
+                process.wait(timeout=CONTROL_RUN)
+                self.fail("%s exited by itself: %s" % (node, process.communicate()[0]))
+            except subprocess.TimeoutExpired:
+                pass
+            os.killpg(process.pid, signal.SIGTERM)
+            try:
+                output = process.communicate(timeout=EXIT_TIMEOUT)[0]
+            except subprocess.TimeoutExpired:
+                output = self.stop(process)
+                self.fail("%s still runs after SIGTERM: %s" % (node, output))
+            self.assertEqual(process.returncode, 0, "%s after SIGTERM:\n%s" % (node, output))
 
     def test_a_maze_file_of_garbage_and_one_of_twenty_megabytes(self):
         with tempfile.NamedTemporaryFile("wb", suffix=".yaml", delete=False) as garbage:

@@ -136,7 +136,9 @@ class Simulation {
   void substep(double h, double start_time);
   void pushOut();
   void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin);
-  void chooseActingContacts(double duration, const Vec3& previous_spin);
+  /// The contacts that act over a stretch (acting_): all but those the marble is leaving. With a
+  /// `pose`, their normals are the board's in it (contacts_ holds those of the substep's start).
+  void chooseActingContacts(double duration, const Vec3& previous_spin, const Mat3* pose);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const;
   void impact(double time);
@@ -165,6 +167,7 @@ class Simulation {
   // sample; a bent path leaves out the contacts it is leaving (faster than resting and than the
   // surface under it changes; it may come back to them: an impact then, found by the sweep).
   std::vector<Contact> acting_;
+  Mat3 forces_pose_ = Mat3::Identity();  // the board's pose when the substep's contacts push
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };
 

@@ -462,6 +462,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
     for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
   }
   for (Contact& contact : *contacts) {
+    contact.grid_normal = contact.normal;
     contact.normal = frame.rotation * contact.normal;
     contact.point = frame.toWorld(contact.point);
     // The board's velocity where the marble's surface meets the normal (not at the tile's
@@ -573,6 +574,7 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   }
   if (best == kNone) return false;
   hit->fraction = best;
+  hit->contact.grid_normal = best_normal;
   hit->contact.normal = frame.rotation * best_normal;
   hit->contact.point = frame.toWorld(best_point);
   // Met at the radius: the marble's surface meets the normal at the tile's point.

@@ -220,6 +220,7 @@ void Simulation::substep(double h, double start_time) {
   // motion in the last one kept apart).
   GridFrame start = frame_;
   const Vec3 previous_spin = frame_.angular_velocity;
+  const double start_roll = board_.roll(), start_pitch = board_.pitch();
   board_.advance(h, kMostTurn);
   frame_.rotation = board_.rotation();  // the pivot stays where it is in the grid
   frame_.angular_velocity = board_.angularVelocity();
@@ -245,6 +246,16 @@ void Simulation::substep(double h, double start_time) {
   // A contact struck at the start (a board kicking the marble) is an impulse before the
   // substep's forces act, so that the flight after it keeps the whole substep's gravity.
   if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
+  // The contacts' forces act over the substep while the board turns: they push along its normals
+  // in its pose at the instant the scheme's forces belong to, or the scheme would be first order
+  // on a turning board: the middle of the substep (the midpoint rule), or for a velocity half a
+  // substep behind its position (semi-implicit Euler's, a leapfrog) the start. (A rotation, not
+  // normals interpolated one by one: contacts at right angles stay at right angles.)
+  const double at = 0.5 - integrator_->velocityLag();
+  forces_pose_ = start.rotation;
+  if (at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0))
+    forces_pose_ = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
+                                      start_pitch + at * (board_.pitch() - start_pitch));
   advance(h, start_time, start, previous_spin);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
@@ -285,9 +296,11 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
   return b;
 }
 
-void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {
+void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin,
+                                      const Mat3* pose) {
   acting_.clear();
   for (const Contact& c : contacts_) {
+    const Vec3 normal = pose ? *pose * c.grid_normal : c.normal;
     const Vec3 relative = marble_.velocity - c.surface_velocity;
     // How much the marble's normal velocity relative to the surface under it changes over the
     // stretch while it moves with the board: it crosses to other points of the turning board,
@@ -296,7 +309,7 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     // last moved with it, |w - w_before| |p|. A departure slower than that is the lag of a
     // contact held at the stretch's start point and the board's last motion: the contact acts,
     // bringing the marble to the board's motion or letting it go.
-    const double away = relative.dot(c.normal);
+    const double away = relative.dot(normal);
     const auto drift = [&] {
       const double w = frame_.angular_velocity.norm(), p = c.point.norm();
       return w * (marble_.velocity.norm() + relative.norm() + w * p) * duration +
@@ -304,7 +317,9 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     };
     const bool leaving =
         integrator_->bends() && away > kRestingSpeed && away > kRestingSpeed + drift();
-    if (!leaving) acting_.push_back(c);
+    if (leaving) continue;
+    acting_.push_back(c);
+    acting_.back().normal = normal;
   }
 }
 
@@ -343,7 +358,7 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const 
   // the step) would otherwise lift it off or sink it in by a few nanometres a step.
   for (std::size_t i = 0; i < acting_.size(); ++i) {
     if (!acting_outcomes_[i].holds()) continue;
-    const Vec3 normal = start.rotation.transpose() * acting_[i].normal;
+    const Vec3& normal = acting_[i].grid_normal;
     sweep->path -= sweep->path.dot(normal) * normal;
     sweep->bend -= sweep->bend.dot(normal) * normal;
     sweep->keepTo(normal, start.toGrid(acting_[i].point));
@@ -362,7 +377,11 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
   double done = 0;  // fraction of the substep
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
-    chooseActingContacts(rest, impacts == 0 ? previous_spin : frame_.angular_velocity);
+    // (After an impact the contacts are the end pose's, and the stretch left is short.)
+    if (impacts == 0)
+      chooseActingContacts(rest, previous_spin, &forces_pose_);
+    else
+      chooseActingContacts(rest, frame_.angular_velocity, nullptr);
     dynamics.beginStretch();
     Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
                                            Stretch{rest, h, impacts > 0});

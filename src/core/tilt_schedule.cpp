@@ -8,11 +8,17 @@
 #include "marble_maze/text_file.h"
 
 namespace marble_maze {
+namespace {
+
+constexpr double kQuarterTurn = 1.5707963267948966;  // rad
+
+}  // namespace
 
 TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& source) {
   TiltSchedule schedule;
   std::istringstream in(text);
   std::string line;
+  bool first_row = true;
   for (int number = 1; std::getline(in, line); ++number) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
@@ -26,11 +32,18 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
     const bool numeric = fields.size() == 3 && parseFiniteNumber(fields[0], &p.time) &&
                          parseFiniteNumber(fields[1], &p.roll) &&
                          parseFiniteNumber(fields[2], &p.pitch);
+    const bool header = first_row && fields.size() == 3 && !parseFiniteNumber(fields[0], &p.time);
+    first_row = false;
     if (!numeric) {
-      if (schedule.points_.empty() && fields.size() == 3 && !parseFiniteNumber(fields[0], &p.time))
-        continue;  // the header row
+      if (header) continue;  // the first row may name the columns; no other row may be words
       throw error("expected three numbers t,roll,pitch (s, rad, rad), got '" + line + "'");
     }
+    // (A board turns at most a quarter turn, the largest tilt_limit: a larger angle is a mistake,
+    // and one near the largest double would overflow between rows.)
+    for (const auto& [name, angle] : {std::pair{"roll", p.roll}, {"pitch", p.pitch}})
+      if (std::abs(angle) > kQuarterTurn)
+        throw error(std::string(name) + ": " + exactText(angle) +
+                    " rad is more than a quarter turn (1.5707963267949 rad)");
     if (!schedule.points_.empty() && p.time <= schedule.points_.back().time)
       throw error("times must increase, got " + fields[0] + " after " +
                   exactText(schedule.points_.back().time));

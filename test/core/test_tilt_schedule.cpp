@@ -37,9 +37,10 @@ TEST(TiltSchedule, ALongProgrammeIsLookedUpAsFastAsAShortOne) {
   // 100,000 rows, each looked up: by bisection, a fraction of a second; a walk from the front
   // for each would take minutes. (A count of the work, not a timing: the values must be right.)
   std::string text;
-  for (int k = 0; k < 100000; ++k) text += std::to_string(k) + "," + std::to_string(k) + ",0\n";
+  // (Row k tilts k times 1e-5 rad, written exactly as k e-5.)
+  for (int k = 0; k < 100000; ++k) text += std::to_string(k) + "," + std::to_string(k) + "e-5,0\n";
   const TiltSchedule s = TiltSchedule::parse(text, "long.csv");
-  for (int k = 0; k + 1 < 100000; ++k) ASSERT_DOUBLE_EQ(s.at(k + 0.5).roll, k + 0.5);
+  for (int k = 0; k + 1 < 100000; ++k) ASSERT_NEAR(s.at(k + 0.5).roll, (k + 0.5) * 1e-5, 1e-15);
 }
 
 TEST(TiltSchedule, EachWrongFileIsRefusedNamingItsLine) {
@@ -52,6 +53,16 @@ TEST(TiltSchedule, EachWrongFileIsRefusedNamingItsLine) {
   EXPECT_EQ(errorOf("0,nan,0\n"),
             "prog.csv:1: expected three numbers t,roll,pitch (s, rad, rad), got '0,nan,0'");
   EXPECT_EQ(errorOf("t,roll,pitch\n"), "prog.csv: no rows t,roll,pitch");
+  // One header row, the first: words further down are a mistake, not another header.
+  EXPECT_EQ(errorOf("# a comment\nt,roll,pitch\n0,0,0\n"), "");
+  EXPECT_EQ(errorOf("t,roll,pitch\nO,0,0\n1,0.1,0\n"),
+            "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got 'O,0,0'");
+  // Angles within a quarter turn (the largest tilt_limit): 1e308 would overflow between rows.
+  EXPECT_EQ(errorOf("0,0,0\n0.001,1e308,0\n"),
+            "prog.csv:2: roll: 1e+308 rad is more than a quarter turn (1.5707963267949 rad)");
+  EXPECT_EQ(errorOf("0,0,-1.6\n"),
+            "prog.csv:1: pitch: -1.6 rad is more than a quarter turn (1.5707963267949 rad)");
+  EXPECT_EQ(errorOf("0,1.5707963267948966,0\n"), "");
   EXPECT_EQ(errorOf(""), "prog.csv: no rows t,roll,pitch");
   try {
     TiltSchedule::load("/nonexistent/prog.csv");

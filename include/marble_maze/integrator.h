@@ -17,6 +17,8 @@ class FieldForces {
   Vec3 acceleration(const Vec3& velocity) const;
   /// True when the acceleration is the same at every velocity (no drag).
   bool constant() const { return drag_ == 0; }
+  /// 1/m: drag slows a marble at speed v at the rate drag() v (1/s).
+  double drag() const { return drag_; }
 
  private:
   Vec3 gravity_;

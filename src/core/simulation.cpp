@@ -26,6 +26,9 @@ constexpr double kRestingSpeed = 1e-5;  // m/s
 constexpr double kNearSlack = 0.5;
 // The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
 constexpr double kMostTurn = 0.05;
+// The most air drag may slow the marble in one substep, k |v| h: within it every scheme slows it
+// without overshooting (explicit Euler's limit is 1); beyond it a step is cut into more substeps.
+constexpr double kMostDragDecay = 0.5;
 
 }  // namespace
 
@@ -207,6 +210,16 @@ void Simulation::step() {
         std::max(std::abs(probe.roll() - board_.roll()), std::abs(probe.pitch() - board_.pitch()));
     if (turn > kMostTurn * substeps)
       substeps = static_cast<int>(std::min(10000.0, std::ceil(turn / kMostTurn)));
+  }
+  // Air drag slows the marble at the rate k |v|: over a substep much longer than 1 / (k |v|) (a
+  // light marble at speed, a long step) a scheme overshoots, turns the velocity round and makes it
+  // grow without bound. The step is cut into as many more substeps as keep k |v| h within
+  // kMostDragDecay, |v| bounded by the speed now and what gravity adds over the step.
+  if (!forces_.constant()) {
+    const double rate = forces_.drag() * (marble_.velocity.norm() + params_.gravity * params_.step);
+    if (rate * params_.step > kMostDragDecay * substeps)
+      substeps =
+          static_cast<int>(std::min(10000.0, std::ceil(rate * params_.step / kMostDragDecay)));
   }
   const double h = params_.step / substeps;
   for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);

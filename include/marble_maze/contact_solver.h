@@ -43,26 +43,26 @@ class ContactSolver {
   double surfaceWork() const { return surface_work_; }
 
  private:
-  void iterate(const std::vector<Contact>& contacts, bool restitution, Velocities* body,
+  void iterate(const std::vector<Contact>& contacts, double restitution, Velocities* body,
                std::vector<ContactOutcome>* outcomes);
-  /// The normal speed a contact leaves at (eq. (1)): e times its approach when it bounces and
-  /// restitution applies, else 0 (it rests or rolls on the tile).
-  double leavingSpeed(const ContactOutcome& o, bool restitution) const {
-    return (restitution && o.bounce) ? params_.restitution * o.approach_speed : 0;
+  /// The normal speed a contact leaves at (eq. (1)): `restitution` times its approach when it
+  /// bounces, else 0 (it rests or rolls on the tile).
+  double leavingSpeed(const ContactOutcome& o, double restitution) const {
+    return o.bounce ? restitution * o.approach_speed : 0;
   }
   /// The change of the marble's normal speed a contact asks for: its leaving speed less the
   /// normal speed of `velocity` relative to the contact's surface.
-  double normalNeed(const Contact& c, const ContactOutcome& o, bool restitution,
+  double normalNeed(const Contact& c, const ContactOutcome& o, double restitution,
                     const Vec3& velocity) const {
     return leavingSpeed(o, restitution) - (velocity - c.surface_velocity).dot(c.normal);
   }
   /// Two contacts at right angles, solved directly (contact_pair.cpp) when one or both stick:
   /// true with body, outcomes and frictions set; false, changing nothing, otherwise.
-  bool solvePair(const std::vector<Contact>& contacts, bool restitution, Velocities* body,
+  bool solvePair(const std::vector<Contact>& contacts, double restitution, Velocities* body,
                  std::vector<ContactOutcome>* outcomes);
   /// Three contacts at right angles (a corner), solved directly (contact_triple.cpp) when all
   /// three stick: true with body, outcomes and frictions set; false, changing nothing, otherwise.
-  bool solveTriple(const std::vector<Contact>& contacts, bool restitution, Velocities* body,
+  bool solveTriple(const std::vector<Contact>& contacts, double restitution, Velocities* body,
                    std::vector<ContactOutcome>* outcomes);
   void resistRolling(const std::vector<Contact>& contacts, Velocities* body) const;
   void measureWork(const std::vector<Contact>& contacts,

@@ -16,7 +16,7 @@
 
 namespace marble_maze {
 
-bool ContactSolver::solvePair(const std::vector<Contact>& contacts, bool restitution,
+bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double restitution,
                               Velocities* body, std::vector<ContactOutcome>* outcomes) {
   const Vec3& na = contacts[0].normal;
   const Vec3& nb = contacts[1].normal;

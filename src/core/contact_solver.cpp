@@ -13,6 +13,9 @@ namespace {
 constexpr int kMaxIterations = 8;
 // A velocity change below this (m/s) is rounding: the sweeps have converged.
 constexpr double kConverged = 1e-12;
+// Halvings of the restitution that simultaneous impacts may leave at without adding energy:
+// within 1e-9 of it.
+constexpr int kRestitutionBisections = 30;
 
 /// n copies of `value` in v, reusing its storage: assign() without its out-of-line call, which
 /// costs more than the copies (this runs several times a step).
@@ -66,18 +69,27 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, Velocities* bod
     (*outcomes)[i].bounce = approach > bounce_threshold_;
   }
   const Velocities before = *body;
-  iterate(contacts, true, body, outcomes);
-  measureWork(contacts, *outcomes);
-  // Newton's restitution at several simultaneous non-orthogonal impacts can add energy; where it
-  // would, the impacts are taken as perfectly inelastic instead, which never does.
+  iterate(contacts, params_.restitution, body, outcomes);
+  // Newton's restitution at several simultaneous impacts can add energy (walls at an acute angle;
+  // a floor and a wall struck at once with friction, whose impulses turn the marble's spin up);
+  // where it would, the impacts leave at the largest restitution that does not, so that the
+  // response stays continuous in e. A perfectly inelastic impact never adds energy: bisection
+  // keeps a restitution that does not (the low end) and closes on one that would.
   const double m = constants_.mass, I = constants_.inertia;
-  if (contacts.size() > 1 &&
-      relativeEnergy(contacts, body->linear, *body, m, I) >
-          relativeEnergy(contacts, before.linear, before, m, I) * (1 + 1e-12)) {
+  const double energy = relativeEnergy(contacts, before.linear, before, m, I) * (1 + 1e-12);
+  const auto gains = [&] { return relativeEnergy(contacts, body->linear, *body, m, I) > energy; };
+  if (contacts.size() > 1 && gains()) {
+    double keeps = 0, adds = params_.restitution;
+    for (int k = 0; k < kRestitutionBisections; ++k) {
+      const double e = 0.5 * (keeps + adds);
+      *body = before;
+      iterate(contacts, e, body, outcomes);
+      (gains() ? adds : keeps) = e;
+    }
     *body = before;
-    iterate(contacts, false, body, outcomes);
-    measureWork(contacts, *outcomes);
+    iterate(contacts, keeps, body, outcomes);
   }
+  measureWork(contacts, *outcomes);
 }
 
 void ContactSolver::constrain(const std::vector<Contact>& contacts, Velocities* body,
@@ -89,7 +101,7 @@ void ContactSolver::constrain(const std::vector<Contact>& contacts, Velocities* 
   // same stretch: a constant resistance then slows it at a constant rate, exactly.
   if (params_.model == Model::Rolling && params_.rolling_resistance > 0)
     resistRolling(contacts, body);
-  iterate(contacts, false, body, outcomes);
+  iterate(contacts, 0, body, outcomes);
   measureWork(contacts, *outcomes);
 }
 
@@ -101,7 +113,7 @@ void ContactSolver::measureWork(const std::vector<Contact>& contacts,
                          .dot(contacts[i].surface_velocity);
 }
 
-void ContactSolver::iterate(const std::vector<Contact>& contacts, bool restitution,
+void ContactSolver::iterate(const std::vector<Contact>& contacts, double restitution,
                             Velocities* body, std::vector<ContactOutcome>* outcomes) {
   const bool rolling = params_.model == Model::Rolling && params_.friction > 0;
   fill(&friction_impulses_, contacts.size(), Vec3(Vec3::Zero()));

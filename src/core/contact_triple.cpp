@@ -23,7 +23,7 @@
 
 namespace marble_maze {
 
-bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, bool restitution,
+bool ContactSolver::solveTriple(const std::vector<Contact>& contacts, double restitution,
                                 Velocities* body, std::vector<ContactOutcome>* outcomes) {
   for (int i = 0; i < 3; ++i)
     if (std::abs(contacts[i].normal.dot(contacts[(i + 1) % 3].normal)) > 1e-12) return false;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <map>
 #include <sstream>
 
@@ -391,6 +392,20 @@ class SceneParser {
     for (std::size_t k = 0; k < layers.value.size(); ++k) {
       plans.push_back(readPlan(layers.value[k], "layers plan " + std::to_string(k), layers.value));
       const Plan& first = plans.front();
+      // YAML's aliases (*name) let a small file repeat one plan a million times: the count of
+      // tiles is bounded as a file of the largest size drawn without them would bound it.
+      const double tiles = static_cast<double>(planRows(first)) * planColumns(first) *
+                           static_cast<double>(layers.value.size());
+      if (k == 0 && tiles > static_cast<double>(kMostTextFileBytes)) {
+        std::ostringstream count;
+        count << std::fixed << std::setprecision(0) << tiles;
+        fail(at(layers.key_node),
+             "layers: " + std::to_string(layers.value.size()) + " plans of " +
+                 std::to_string(planColumns(first)) + " x " + std::to_string(planRows(first)) +
+                 " characters are " + count.str() + " tiles; at most " +
+                 std::to_string(kMostTextFileBytes) + " (as many as a file of the largest size, " +
+                 std::to_string(kMostTextFileBytes >> 20) + " MB, draws)");
+      }
       const Plan& plan = plans.back();
       if (planRows(plan) != planRows(first) || planColumns(plan) != planColumns(first))
         fail(at(plan.node),

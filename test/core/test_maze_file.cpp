@@ -329,6 +329,18 @@ TEST(MazeFileError, UnknownCharacterInALaterPlanOfLayers) {
                         "bad.yaml:9:6:", "unknown character '\xE2\x96\x88' in layers plan 1"));
 }
 
+TEST(MazeFileError, AliasesRepeatingAPlanBeyondTheLargestFilesTilesAreRefused) {
+  // 20 KB of YAML naming one 130 x 130 floor plan (an anchor, &f) 1000 times (aliases, *f): 17
+  // million tiles, more than a 16 MB file can draw without aliases. Unbounded, a million
+  // aliases of a 300 x 300 plan asked for 90 GB.
+  std::string text = "grid: {x: 0.01, y: 0.01, z: 0.01}\nlayers:\n  - &f\n    |\n";
+  for (int j = 0; j < 130; ++j) text += "    " + std::string(130, '#') + "\n";
+  for (int k = 0; k < 999; ++k) text += "  - *f\n";
+  EXPECT_TRUE(failsWith(text, "bad.yaml:2:1:",
+                        "layers: 1000 plans of 130 x 130 characters are 16900000 tiles; at most "
+                        "16777216 (as many as a file of the largest size, 16 MB, draws)"));
+}
+
 TEST(MazeFileError, RaggedRow) {
   EXPECT_TRUE(failsWith(kGrid + "layout: |\n  +-+-+\n  |S G |\n  +-+-+\n", "bad.yaml:7:3:",
                         "layout: expected every row 5 characters long like the first, found 6"));

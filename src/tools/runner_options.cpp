@@ -32,7 +32,8 @@ Runs the marble_maze physics without ROS and reports what happened.
                        under other physics (its maze, tilts and length are the bag's:
                        --maze, --tilt, --tilt-csv and --duration are refused with it)
   --check              with --bag: compare with the bag's recorded marble_state, bit for bit;
-                       exit 1 at the first difference, printing its time and size
+                       exit 1 at the first difference, printing its stamp and size (not
+                       with --set: other physics make other states)
   --help, -h           this text
 
 The board starts at the tilt program's first value unless initial_roll or initial_pitch is set
@@ -159,6 +160,10 @@ Options parseOptions(const std::vector<std::string>& args) {
     for (const char* flag : {"--maze", "--tilt", "--tilt-csv", "--duration"})
       if (given.count(flag))
         throw UsageError(std::string(flag) + ": not with --bag, whose session sets it");
+  // Other physics make other states: there is nothing the recording could confirm.
+  if (o.check && !o.sets.empty())
+    throw UsageError("--check: not with --set (" + o.sets.front().first +
+                     "): the recorded states are those of the recorded physics");
   return o;
 }
 

@@ -155,8 +155,9 @@ int rerun(const Options& o) {
       const std::string gap_before = differs(states[next], before);
       const std::string gap = differs(states[next], shown(sim));
       if (o.check && !gap_before.empty() && !gap.empty()) {
-        std::cerr << "simulate: --check: at t=" << std::setprecision(17) << stamp.toSec()
-                  << " s (step " << sim.steps() << "): " << gap << "\n";
+        std::cerr << "simulate: --check: the state stamped " << std::setprecision(17)
+                  << stamp.toSec() << " s (simulated time " << sim.time() << " s, step "
+                  << sim.steps() << "): " << gap << "\n";
         return 1;
       }
     }

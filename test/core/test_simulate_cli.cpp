@@ -136,6 +136,9 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--out " + csv_again + " --events " + csv, "--events: '" + csv + "' is --out's too"},
       {"--out - --events /dev/stdout", "--events: '/dev/stdout' is --out's too"},
       {"--tilt 0.1,0.1,0.1", "--tilt: expected ROLL,PITCH, got '0.1,0.1,0.1'"},
+      // Other physics make other states: --check would only fail, or find nothing to compare.
+      {"--bag session.bag --check --set preset=fast",
+       "--check: not with --set (preset): the recorded states are those of the recorded physics"},
   };
   for (const auto& [args, message] : cases) {
     const Result r = runSimulate(args);

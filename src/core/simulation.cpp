@@ -313,8 +313,13 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
                                       const Mat3* pose) {
   acting_.clear();
   for (const Contact& c : contacts_) {
+    // In another pose, the board's velocity is taken where the marble's surface meets the normal
+    // there, as findContacts takes it: so every contact asks one rigid motion of the marble.
     const Vec3 normal = pose ? *pose * c.grid_normal : c.normal;
-    const Vec3 relative = marble_.velocity - c.surface_velocity;
+    const Vec3 surface_velocity =
+        pose ? frame_.surfaceVelocity(marble_.position - params_.marble_radius * normal)
+             : c.surface_velocity;
+    const Vec3 relative = marble_.velocity - surface_velocity;
     // How much the marble's normal velocity relative to the surface under it changes over the
     // stretch while it moves with the board: it crosses to other points of the turning board,
     // |w| |v| h; the surface's normal turns under its relative velocity, |w| |v_rel| h, and its
@@ -333,6 +338,7 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     if (leaving) continue;
     acting_.push_back(c);
     acting_.back().normal = normal;
+    acting_.back().surface_velocity = surface_velocity;
   }
 }
 

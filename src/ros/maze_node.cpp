@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "wall_throttle.h"
+
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
@@ -36,7 +38,6 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   }
   maze_text_ = scene.text;
   maze_source_ = scene.source;
-  started_ = ros::WallTime::now();
   log_ = std::make_unique<SessionLog>(nh, settings_);
   log_->scene(*session_, maze_text_, maze_source_);
 
@@ -98,6 +99,16 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
     free_run_ = nh.createWallTimer(ros::WallDuration(0.001), &MazeNode::onFreeRun, this);
   } else if (settings_.lockstep <= 0) {
     timer_ = nh.createTimer(ros::Duration(1.0 / settings_.update_rate), &MazeNode::onTimer, this);
+    // (On the wall's clock: a timer of ROS time does not fire while a simulated clock has not
+    // started.)
+    clock_check_ = nh.createWallTimer(
+        ros::WallDuration(2.0),
+        [](const ros::WallTimerEvent&) {
+          if (ros::Time::now().isZero())
+            ROS_INFO(
+                "marble_maze: waiting for /clock (/use_sim_time is true and no clock has come)");
+        },
+        true);
   }
 }
 
@@ -169,13 +180,7 @@ void MazeNode::publishClock() {
 
 void MazeNode::onTimer(const ros::TimerEvent&) {
   const ros::Time now = ros::Time::now();
-  if (now.isZero()) {  // a simulated clock that has not started
-    if (!said_waiting_ && (ros::WallTime::now() - started_).toSec() > 2.0) {
-      ROS_INFO("marble_maze: waiting for /clock (/use_sim_time is true and no clock has come)");
-      said_waiting_ = true;
-    }
-    return;
-  }
+  if (now.isZero()) return;  // a simulated clock that has not started (clock_check_ says so)
   if (!clock_.anchored()) {  // the first tick of a running clock
     // Steps on a grid of ROS time (multiples of the step), so that two nodes given the same
     // stamped commands apply them at the same instants: `rosbag play` of a session's commands
@@ -214,8 +219,8 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
   const auto most = static_cast<std::int64_t>(
       std::min(std::max(kMaxCatchUp, 5.0 / settings_.update_rate) / step(), mostStepsPerCall()));
   if (due > most) {
-    ROS_WARN_THROTTLE(5.0, "simulation fell %.3g s behind ROS time; skipping ahead",
-                      (due - most) * step());
+    MARBLE_MAZE_WARN_WALL_THROTTLE(5.0, "simulation fell %.3g s behind ROS time; skipping ahead",
+                                   (due - most) * step());
     skipped_steps_ += due - most;
     // The steps taken now end at now's step on the grid.
     reanchor(ros::Time().fromNSec(onGrid(now, stepNs()).toNSec() - most * stepNs()));
@@ -326,9 +331,10 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
   const std::uint64_t at =
       clock_.anchored() && !session_->paused() ? clock_.stepAt(stamp, now) : now;
   if (!session_->command({at, kind, roll, pitch}))
-    ROS_WARN_THROTTLE(1.0,
-                      "tilt commands stamped far ahead fill the queue; dropped the one furthest "
-                      "ahead");
+    MARBLE_MAZE_WARN_WALL_THROTTLE(
+        1.0,
+        "tilt commands stamped far ahead fill the queue; dropped the one furthest "
+        "ahead");
   return static_cast<double>(at - now) * step();
 }
 

@@ -103,14 +103,13 @@ class MazeNode {
   ros::Publisher clock_pub_;
   ros::Timer timer_;
   ros::WallTimer free_run_;
+  ros::WallTimer clock_check_;  // says once if a simulated clock has not come 2 s after start
 
   ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)
   ros::Time last_frozen_;  // while paused: when the frozen state was last published
   std::uint64_t skipped_steps_ = 0;
   ros::WallTime free_run_start_;
   double free_run_start_sim_ = 0;
-  ros::WallTime started_;
-  bool said_waiting_ = false;
 };
 
 }  // namespace marble_maze_ros

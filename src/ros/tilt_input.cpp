@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "wall_throttle.h"
+
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
@@ -39,14 +41,16 @@ void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& ev
   const marble_maze::BoardTilt::ConstPtr msg = event.getConstMessage();
   checkNoneLost(tilt_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll) || !std::isfinite(msg->pitch)) {
-    ROS_WARN_THROTTLE(1.0, "%s: refused roll=%g pitch=%g (not finite); the board keeps its tilt",
-                      tilt_topic_.c_str(), msg->roll, msg->pitch);
+    MARBLE_MAZE_WARN_WALL_THROTTLE(
+        1.0, "%s: refused roll=%g pitch=%g (not finite); the board keeps its tilt",
+        tilt_topic_.c_str(), msg->roll, msg->pitch);
     return;
   }
   const double limit = limits_().tilt_limit;
   if (std::abs(msg->roll) > limit || std::abs(msg->pitch) > limit)
-    ROS_WARN_THROTTLE(1.0, "%s: roll=%g pitch=%g rad beyond tilt_limit %g rad; clamped",
-                      tilt_topic_.c_str(), msg->roll, msg->pitch, limit);
+    MARBLE_MAZE_WARN_WALL_THROTTLE(1.0,
+                                   "%s: roll=%g pitch=%g rad beyond tilt_limit %g rad; clamped",
+                                   tilt_topic_.c_str(), msg->roll, msg->pitch, limit);
   pass(tilt_topic_, msg->header, mm::TiltCommand::Kind::Angles, msg->roll, msg->pitch);
 }
 
@@ -54,15 +58,16 @@ void TiltInput::onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltR
   const marble_maze::BoardTiltRate::ConstPtr msg = event.getConstMessage();
   checkNoneLost(rate_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll_rate) || !std::isfinite(msg->pitch_rate)) {
-    ROS_WARN_THROTTLE(1.0, "%s: refused roll_rate=%g pitch_rate=%g (not finite); nothing changed",
-                      rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate);
+    MARBLE_MAZE_WARN_WALL_THROTTLE(
+        1.0, "%s: refused roll_rate=%g pitch_rate=%g (not finite); nothing changed",
+        rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate);
     return;
   }
   const double limit = limits_().tilt_rate_limit;
   if (limit > 0 && (std::abs(msg->roll_rate) > limit || std::abs(msg->pitch_rate) > limit))
-    ROS_WARN_THROTTLE(1.0,
-                      "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
-                      rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate, limit);
+    MARBLE_MAZE_WARN_WALL_THROTTLE(
+        1.0, "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
+        rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate, limit);
   pass(rate_topic_, msg->header, mm::TiltCommand::Kind::Rates, msg->roll_rate, msg->pitch_rate);
 }
 
@@ -72,11 +77,12 @@ void TiltInput::pass(const std::string& topic, const std_msgs::Header& header,
   ++received_;
   const double held = handler_(header.stamp.isZero() ? last_ : header.stamp, kind, roll, pitch);
   if (held > kHeldWarning)
-    ROS_WARN_THROTTLE(1.0,
-                      "%s: command stamped %.9g s is held %.6g s, until the simulation's clock "
-                      "reaches its stamp (stamp commands with ros::Time::now(), which follows "
-                      "/clock under /use_sim_time, or leave the stamp zero to act at once)",
-                      topic.c_str(), header.stamp.toSec(), held);
+    MARBLE_MAZE_WARN_WALL_THROTTLE(
+        1.0,
+        "%s: command stamped %.9g s is held %.6g s, until the simulation's clock "
+        "reaches its stamp (stamp commands with ros::Time::now(), which follows "
+        "/clock under /use_sim_time, or leave the stamp zero to act at once)",
+        topic.c_str(), header.stamp.toSec(), held);
 }
 
 }  // namespace marble_maze_ros

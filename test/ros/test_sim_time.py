@@ -4,7 +4,7 @@
 This test is the clock: it publishes /clock itself, from 100 s on in 10 ms ticks, at HALF the
 speed of the wall clock (one tick per 20 ms of wall time), so that a node timing itself by the
 wall clock would be caught by its rates and distances. It checks that
-  - before the clock starts, the node publishes no marble_state;
+  - before the clock starts, the node publishes no marble_state, and says once that it waits;
   - marble_state stamps are never ahead of the clock (exact, in nanoseconds), the latest one is
     within one publish period and a step of it, and there are 50 per second of clock time;
   - under a tilt stamped on the clock, the marble rolls as the clock advances, exactly as the
@@ -123,6 +123,9 @@ class SimTimeTest(unittest.TestCase):
         cls.clock = Clock_()
         cls.tilt_pub = rospy.Publisher("tilt", BoardTilt, queue_size=10)
         rospy.Subscriber("marble_state", MarbleState, cls._on_state, queue_size=1000)
+        cls.said = []  # what the node says on /rosout, from its start
+        rospy.Subscriber("/rosout", Log, lambda m: m.name == NODE and cls.said.append(m.msg),
+                         queue_size=100)
         # Wait (wall time) until the node is up, and connected to our tilt publisher.
         master = rosgraph.Master(rospy.get_name())
         deadline = time.time() + 30
@@ -216,6 +219,14 @@ class SimTimeTest(unittest.TestCase):
         self.assertEqual(self.count(), 0, "marble_state published before /clock started")
         self.assertTrue(rospy.get_param("/use_sim_time"))
         self.assertEqual(rospy.Time.now(), rospy.Time(0))
+        # It says so, once, 2 s of wall time after its start (it said nothing: its check ran on
+        # a timer of ROS time, which stands still until a clock comes).
+        deadline = time.time() + WAIT
+        waiting = lambda: [s for s in self.said if "waiting for /clock" in s]
+        while not waiting() and time.time() < deadline:
+            time.sleep(0.1)
+        self.assertEqual(len(waiting()), 1, "said: %s" % self.said)
+        self.assertEqual(self.count(), 0)
 
     def test_2_stamps_follow_the_clock(self):
         self.clock.start()

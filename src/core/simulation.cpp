@@ -24,6 +24,8 @@ constexpr double kRestingSpeed = 1e-5;  // m/s
 // until it has moved that far: at play speeds (up to about 1 m/s) that lasts several substeps,
 // and the box they are gathered from grows by few tiles.
 constexpr double kNearSlack = 0.5;
+// The highest above the board's floor (m) a marble may be put: a fall of 4.5 s.
+constexpr double kMostPlacedHeight = 100;
 // The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
 constexpr double kMostTurn = 0.05;
 // The most air drag may slow the marble in one substep, k |v| h: within it every scheme slows it
@@ -133,6 +135,12 @@ std::string Simulation::whyNotPlaceable(const Vec3& position_in_board) const {
   const Vec3 extent = maze_.extent();
   if (grid.x() < 0 || grid.y() < 0 || grid.x() > extent.x() || grid.y() > extent.y())
     return "off the board (outside its x-y extent)";
+  // Wholly below the playing surface it would be off the board (or in a hole) at once; far above
+  // it, a fall of minutes to the board, its rounding growing with the height.
+  const double r = params_.marble_radius, above = grid.z() - maze_.floorTop();
+  if (above < -r) return "below the board (its top under the floor's)";
+  if (above > kMostPlacedHeight)
+    return "more than " + exactText(kMostPlacedHeight) + " m above the board";
   GridFrame level;  // the board at rest, in its own frame
   level.grid_pivot = maze_.pivot();
   std::vector<Contact> touching;

@@ -429,6 +429,20 @@ TEST(Extremes, AMarbleThatCannotStartWhereItIsPutIsRefusedNamingTheKey) {
   Scene off_board = scene;
   setParam(off_board.params, "start_position", "1,0,0.006");
   EXPECT_NE(refusal(off_board).find("start_position"), std::string::npos) << refusal(off_board);
+  // Under the board it was taken, and was off the board at once; a million metres above it,
+  // it fell for minutes, drifting 1e290 m at 1e300.
+  for (const std::pair<const char*, const char*> bad :
+       {std::pair{"0.0136,0.0706,-0.05", "below the board (its top under the floor's)"},
+        {"0.0136,0.0706,1e6", "more than 100 m above the board"}}) {
+    Scene where = scene;
+    setParam(where.params, "start_position", bad.first);
+    EXPECT_EQ(refusal(where),
+              std::string("start_position: the marble cannot start there: ") + bad.second)
+        << bad.first;
+  }
+  Scene high = scene;  // a drop from 50 m is a drop
+  setParam(high.params, "start_position", "0.0136,0.0706,50");
+  EXPECT_EQ(refusal(high), "");
   Scene wide = scene;  // 3 cm across in a cell of 2.2 cm between walls
   setParam(wide.params, "marble_radius", "0.015");
   EXPECT_NE(refusal(wide).find("marble_radius: a marble of radius 0.015 m does not fit the start "

@@ -28,6 +28,11 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   using Level = diagnostic_msgs::DiagnosticStatus;
   if (now_.paused)
     status.summary(Level::OK, "paused");
+  else if (now_.ahead > 0)
+    status.summaryf(Level::OK,
+                    "%.3g s ahead of ROS time (steps taken while paused): waiting for it to "
+                    "catch up",
+                    now_.ahead);
   else if (skipped > 0)
     status.summaryf(Level::WARN, "fell behind: skipped %llu steps to catch up",
                     static_cast<unsigned long long>(skipped));
@@ -52,6 +57,7 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("tilt commands lost on the way (last period)", now_.lost - before_.lost);
   status.add("commands queued", now_.queued);
   status.add("simulated time (s)", now_.simulated_time);
+  status.add("ahead of ROS time (s)", now_.ahead);
   before_ = now_;
   before_at_ = at;
 }

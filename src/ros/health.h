@@ -27,6 +27,9 @@ struct HealthFigures {
   std::size_t queued = 0;           ///< commands waiting for their step
   bool paused = false;
   bool lockstep = false;
+  /// s the simulation stands ahead of ROS time (steps taken while paused), waiting for it; 0
+  /// when it is not ahead.
+  double ahead = 0;
 };
 
 class Health {

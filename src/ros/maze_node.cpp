@@ -214,6 +214,8 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
     updateHealth();
     return;
   }
+  // (Negative after steps taken while paused, which keep their exact stamps: nothing is due, and
+  // nothing is published, until ROS time has caught up; /diagnostics says how far ahead.)
   auto due = static_cast<std::int64_t>(clock_.stepsDue(now)) -
              static_cast<std::int64_t>(session_->steps());
   const auto most = static_cast<std::int64_t>(
@@ -304,6 +306,8 @@ void MazeNode::updateHealth() {
   f.since_command = input_->last().isZero() ? -1 : (ros::Time::now() - input_->last()).toSec();
   f.queued = session_->queued();
   f.paused = session_->paused();
+  if (f.follows_ros_time && clock_.anchored())
+    f.ahead = std::max(0.0, (stampNow() - ros::Time::now()).toSec());
   f.lockstep = settings_.lockstep > 0;
   health_->set(f);
 }

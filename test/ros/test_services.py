@@ -15,7 +15,9 @@
     a value changed live holds over a maze loaded later;
   - /diagnostics carries the real-time factor; odom is published in world with child marble;
   - a microsecond step of 1000 substeps set live leaves the node answering its services within
-    10 s, /diagnostics saying it fell behind; a `step` call of more than 1e7 substeps is refused.
+    10 s, /diagnostics saying it fell behind; a `step` call of more than 1e7 substeps is refused;
+  - steps taken while paused put the simulation ahead of ROS time: /diagnostics says so, and
+    states come again once ROS time has caught up.
 """
 import math
 import os
@@ -284,6 +286,20 @@ class ServicesTest(unittest.TestCase):
         for v in (state.position, state.velocity, state.angular_velocity):
             self.assertTrue(all(math.isfinite(c) for c in (v.x, v.y, v.z)))
         self.assertTrue(call("resume", Trigger).success)
+    def test_9_steps_taken_while_paused_run_ahead_and_diagnostics_say_so(self):
+        # Steps taken while paused keep their exact stamps, so they run ahead of ROS time: after
+        # `resume` nothing new comes until ROS time has caught up, and /diagnostics says how far
+        # ahead the simulation is (it said "running at 0.37 times real time").
+        call("pause", Trigger)
+        stepped = call("step", Step, 3000).state  # 3 s of simulated time at once
+        self.assertGreater(stamp_ns(stepped) - rospy.get_rostime().to_nsec(), 2.5e9)
+        self.assertTrue(call("resume", Trigger).success)
+        ahead = self.diagnostics.wait(
+            lambda a: any("ahead of ROS time" in st.message for st in a.status), timeout=5)
+        self.assertIsNotNone(ahead, "/diagnostics does not say the simulation is ahead")
+        caught_up = self.states.wait(lambda m: stamp_ns(m) > stamp_ns(stepped), timeout=10)
+        self.assertIsNotNone(caught_up, "no new state after ROS time caught up")
+
 
 if __name__ == "__main__":
     rospy.init_node("test_services")

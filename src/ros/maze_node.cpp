@@ -232,8 +232,14 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
   updateHealth();
 }
 
-void MazeNode::onFreeRun(const ros::WallTimerEvent&) {
+void MazeNode::onFreeRun(const ros::WallTimerEvent& event) {
   if (session_->paused()) {
+    // ROS time is the simulation's and stands still with it (as a paused Gazebo's does); /clock
+    // goes on being said, 20 times a wall second, so that a node started meanwhile knows the time.
+    if ((event.current_real - last_clock_said_).toSec() >= 0.05) {
+      last_clock_said_ = event.current_real;
+      publishClock();
+    }
     updateHealth();
     return;
   }

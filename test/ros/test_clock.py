@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """rostest of ~clock (run by clock.test): the node owns /clock. Run free (real_time_factor 0) it
 reaches at least MIN_FREE times real time; at real_time_factor 20 it keeps within 20% of it and
-publishes marble_state at 50 Hz of simulated time (within 1 a second). Wall time is measured
-here with time.time(): rospy follows /clock."""
+publishes marble_state at 50 Hz of simulated time (within 1 a second). Paused, its clock stands
+and goes on being said. Wall time is measured here with time.time(): rospy follows /clock."""
 import threading
 import time
 import unittest
@@ -11,6 +11,7 @@ import rospy
 import rostest
 from dynamic_reconfigure.client import Client
 from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Trigger
 
 from marble_maze.msg import MarbleState
 
@@ -59,6 +60,27 @@ class ClockTest(unittest.TestCase):
         rate = len(inside) / (c1 - c0)
         print("marble_state: %.2f per second of simulated time" % rate)
         self.assertAlmostEqual(rate, 50.0, delta=1.0)
+
+    def test_paused_the_clock_stands_and_is_still_said(self):
+        # Paused, ROS time (the node's) stands still, and /clock goes on being said: a node
+        # started meanwhile knows the time (nothing came: rostopic asked whether /clock was
+        # published).
+        pause = rospy.ServiceProxy("/pause", Trigger)
+        resume = rospy.ServiceProxy("/resume", Trigger)
+        rospy.wait_for_service("/pause", timeout=20)
+        self.assertTrue(pause().success)
+        try:
+            time.sleep(0.5)
+            heard = []
+            sub = rospy.Subscriber("/clock", Clock, lambda m: heard.append(m.clock.to_nsec()))
+            time.sleep(1.0)
+            sub.unregister()
+            self.assertGreater(len(heard), 5, "/clock not said while paused")
+            self.assertEqual(len(set(heard)), 1, "the clock moved while paused")
+        finally:
+            resume()
+        factor, _, _ = self.factor_over(1.0)
+        self.assertGreater(factor, 1.0)  # and it runs again
 
 
 if __name__ == "__main__":

@@ -47,7 +47,12 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
       [this](const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll, double pitch) {
         return onCommand(stamp, kind, roll, pitch);
       },
-      [this]() -> const mm::Params& { return session_->simulation().params(); });
+      [this]() -> const mm::Params& { return session_->simulation().params(); },
+      [this] {
+        // In lockstep a refused command is answered too, by the state as it stands (with the
+        // stamp of the one before it: nothing moved), so that the agent's loop goes on.
+        if (settings_.lockstep > 0 && !session_->paused()) publishDue(true);
+      });
   SimControl control;
   control.reset = [this] { return reset(); };
   control.pause = [this] { return pause(); };

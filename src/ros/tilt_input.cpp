@@ -8,8 +8,8 @@ namespace marble_maze_ros {
 namespace mm = marble_maze;
 
 TiltInput::TiltInput(ros::NodeHandle& nh, Handler handler,
-                     std::function<const mm::Params&()> limits)
-    : handler_(std::move(handler)), limits_(std::move(limits)) {
+                     std::function<const mm::Params&()> limits, std::function<void()> refused)
+    : handler_(std::move(handler)), limits_(std::move(limits)), refused_(std::move(refused)) {
   const auto hints = ros::TransportHints().tcpNoDelay();
   // Deep queues: in lockstep each command runs its control period before the next is read, and an
   // agent may send a burst.
@@ -44,6 +44,7 @@ void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& ev
     MARBLE_MAZE_WARN_WALL_THROTTLE(
         1.0, "%s: refused roll=%g pitch=%g (not finite); the board keeps its tilt",
         tilt_topic_.c_str(), msg->roll, msg->pitch);
+    refused_();
     return;
   }
   const double limit = limits_().tilt_limit;
@@ -61,6 +62,7 @@ void TiltInput::onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltR
     MARBLE_MAZE_WARN_WALL_THROTTLE(
         1.0, "%s: refused roll_rate=%g pitch_rate=%g (not finite); nothing changed",
         rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate);
+    refused_();
     return;
   }
   const double limit = limits_().tilt_rate_limit;

@@ -28,9 +28,11 @@ class TiltInput {
   /// Held longer than this, a command is warned about (throttled): a stamp of wall time into a
   /// node on simulated time, a clock that jumped back.
   static constexpr double kHeldWarning = 0.1;  // s
-  /// `limits` gives the tilt and rate limits in force (they may change while running).
+  /// `limits` gives the tilt and rate limits in force (they may change while running);
+  /// `refused` is called after a command is refused (not finite), so that a loop waiting for
+  /// the answer to each command gets one.
   TiltInput(ros::NodeHandle& nh, Handler handler,
-            std::function<const marble_maze::Params&()> limits);
+            std::function<const marble_maze::Params&()> limits, std::function<void()> refused);
 
   std::uint64_t received() const { return received_; }
   /// Commands lost on the way since the start (gaps in their publishers' header.seq).
@@ -48,6 +50,7 @@ class TiltInput {
 
   Handler handler_;
   std::function<const marble_maze::Params&()> limits_;
+  std::function<void()> refused_;
   ros::Subscriber tilt_sub_, rate_sub_;
   std::string tilt_topic_, rate_topic_;  // kept: a warning names them long after subscribing
   std::uint64_t received_ = 0;

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """rostest of ~lockstep (run by lockstep.test, control period 0.02 s): each tilt command is
 answered by a marble_state exactly one control period (20 steps) later in simulated time, with
-the command in force; a burst of 300 commands is taken whole; a reset between commands is shown at once, at the stamp of the state
-before it; paused, a command waits for the next step taken; and the example agent
+the command in force; a burst of 300 commands is taken whole; a reset between commands is shown
+at once, at the stamp of the state before it; a refused (NaN) command is answered by the state as
+it stands, at the same stamp; paused, a command waits for the next step taken; and the example agent
 (examples/lockstep_agent.py) brings the marble within 5 mm of its point, printing the steps per
 second of wall time it reaches."""
 import importlib.util
@@ -94,6 +95,28 @@ class LockstepTest(unittest.TestCase):
         self.assertEqual(shown.header.stamp, moved.header.stamp)
         self.assertEqual((shown.roll, shown.pitch), (0.0, 0.0))  # the board back level
         self.assertNotEqual(moved.pitch, 0.0)
+
+    def test_a_refused_command_is_answered_by_the_state_as_it_stands(self):
+        # A NaN tilt is refused; the agent waiting for its answer gets the state unchanged, at
+        # the stamp of the one before (it got nothing, and its loop stopped at its timeout).
+        states, arrived, tilt = self.connect()
+        with arrived:
+            before = len(states)
+            tilt.publish(BoardTilt(roll=0.0, pitch=0.03))
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
+            last = states[-1]
+            before = len(states)
+            tilt.publish(BoardTilt(roll=float("nan"), pitch=0.0))
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5),
+                            "no answer to a refused command")
+            answer = states[-1]
+            before = len(states)
+            tilt.publish(BoardTilt(roll=0.0, pitch=0.03))  # and the loop goes on
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
+            after = states[-1]
+        self.assertEqual(answer.header.stamp, last.header.stamp)
+        self.assertEqual((answer.position, answer.pitch), (last.position, last.pitch))
+        self.assertEqual(after.header.stamp.to_nsec() - last.header.stamp.to_nsec(), PERIOD_NS)
 
     def test_paused_a_command_waits_for_the_next_step_taken(self):
         states, arrived, tilt = self.connect()

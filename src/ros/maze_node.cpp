@@ -323,8 +323,7 @@ void MazeNode::updateHealth() {
   health_->set(f);
 }
 
-// --- Inputs
-// ----------------------------------------------------------------------------------------
+// --- Inputs --------------------------------------------------------------------------------------
 
 double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, double roll,
                            double pitch) {
@@ -353,8 +352,7 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
   return static_cast<double>(at - now) * step();
 }
 
-// --- Services
-// --------------------------------------------------------------------------------------
+// --- Services ------------------------------------------------------------------------------------
 
 std::string MazeNode::reset() {
   session_->reset();

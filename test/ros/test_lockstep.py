@@ -77,21 +77,23 @@ class LockstepTest(unittest.TestCase):
             stamps = [s.header.stamp.to_nsec() for s in states[before:]]
         self.assertEqual({b - a for a, b in zip(stamps, stamps[1:])}, {PERIOD_NS})
 
+    def answer_to(self, states, arrived, act, what):
+        """Does `act` and returns the state that answers it (within 5 s)."""
+        with arrived:
+            before = len(states)
+            act()
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5), what)
+            return states[-1]
+
     def test_a_reset_is_shown_at_once_at_the_same_stamp(self):
         states, arrived, tilt = self.connect()
-        with arrived:
-            before = len(states)
-            tilt.publish(BoardTilt(roll=0.0, pitch=0.08))
-            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
-            moved = states[-1]
+        moved = self.answer_to(states, arrived, lambda: tilt.publish(BoardTilt(pitch=0.08)),
+                               "no state after a command")
         rospy.wait_for_service("reset", timeout=20)
-        with arrived:
-            before = len(states)
-            self.assertTrue(rospy.ServiceProxy("reset", Trigger)().success)
-            # No command since: time has not moved, and the reset state comes all the same.
-            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5),
-                            "no state after the reset")
-            shown = states[-1]
+        # No command since: time has not moved, and the reset state comes all the same.
+        reset = rospy.ServiceProxy("reset", Trigger)
+        shown = self.answer_to(states, arrived, lambda: self.assertTrue(reset().success),
+                               "no state after the reset")
         self.assertEqual(shown.header.stamp, moved.header.stamp)
         self.assertEqual((shown.roll, shown.pitch), (0.0, 0.0))  # the board back level
         self.assertNotEqual(moved.pitch, 0.0)
@@ -100,20 +102,11 @@ class LockstepTest(unittest.TestCase):
         # A NaN tilt is refused; the agent waiting for its answer gets the state unchanged, at
         # the stamp of the one before (it got nothing, and its loop stopped at its timeout).
         states, arrived, tilt = self.connect()
-        with arrived:
-            before = len(states)
-            tilt.publish(BoardTilt(roll=0.0, pitch=0.03))
-            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
-            last = states[-1]
-            before = len(states)
-            tilt.publish(BoardTilt(roll=float("nan"), pitch=0.0))
-            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5),
-                            "no answer to a refused command")
-            answer = states[-1]
-            before = len(states)
-            tilt.publish(BoardTilt(roll=0.0, pitch=0.03))  # and the loop goes on
-            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
-            after = states[-1]
+        command = lambda roll, pitch: lambda: tilt.publish(BoardTilt(roll=roll, pitch=pitch))
+        last = self.answer_to(states, arrived, command(0.0, 0.03), "no state after a command")
+        answer = self.answer_to(states, arrived, command(float("nan"), 0.0),
+                                "no answer to a refused command")
+        after = self.answer_to(states, arrived, command(0.0, 0.03), "the loop did not go on")
         self.assertEqual(answer.header.stamp, last.header.stamp)
         self.assertEqual((answer.position, answer.pitch), (last.position, last.pitch))
         self.assertEqual(after.header.stamp.to_nsec() - last.header.stamp.to_nsec(), PERIOD_NS)

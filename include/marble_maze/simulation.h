@@ -167,7 +167,9 @@ class Simulation {
   // sample; a bent path leaves out the contacts it is leaving (faster than resting and than the
   // surface under it changes; it may come back to them: an impact then, found by the sweep).
   std::vector<Contact> acting_;
-  Mat3 forces_pose_ = Mat3::Identity();  // the board's pose when the substep's contacts push
+  Mat3 forces_pose_ = Mat3::Identity();  // the board's pose when the substep's contacts push,
+  bool forces_turned_ = false;           // when it is not the substep's start pose
+  double substep_ = 0;  // s: the last step's substep (shorter when the step was cut)
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };
 

@@ -78,16 +78,22 @@ void ContactSolver::impact(const std::vector<Contact>& contacts, Velocities* bod
   const double m = constants_.mass, I = constants_.inertia;
   const double energy = relativeEnergy(contacts, before.linear, before, m, I) * (1 + 1e-12);
   const auto gains = [&] { return relativeEnergy(contacts, body->linear, *body, m, I) > energy; };
-  if (contacts.size() > 1 && gains()) {
-    double keeps = 0, adds = params_.restitution;
-    for (int k = 0; k < kRestitutionBisections; ++k) {
-      const double e = 0.5 * (keeps + adds);
-      *body = before;
-      iterate(contacts, e, body, outcomes);
-      (gains() ? adds : keeps) = e;
-    }
+  if (contacts.size() > 1 && params_.restitution > 0 && gains()) {
     *body = before;
-    iterate(contacts, keeps, body, outcomes);
+    iterate(contacts, 0, body, outcomes);
+    // (On a turning board, where the energy is taken relative to the surfaces' mean motion, an
+    // inelastic impact may seem to gain too: then it is the answer.)
+    if (!gains()) {
+      double keeps = 0, adds = params_.restitution;
+      for (int k = 0; k < kRestitutionBisections; ++k) {
+        const double e = 0.5 * (keeps + adds);
+        *body = before;
+        iterate(contacts, e, body, outcomes);
+        (gains() ? adds : keeps) = e;
+      }
+      *body = before;
+      iterate(contacts, keeps, body, outcomes);
+    }
   }
   measureWork(contacts, *outcomes);
 }

@@ -44,6 +44,7 @@ Simulation::Simulation(const Scene& scene)
       mass_(params_.marbleMass()),
       inertia_(params_.marbleInertia()) {
   validate(params_);
+  substep_ = params_.step / params_.substeps;
   reset();
   // The marble must start where it can be: not in a tile (a start position in a wall, a marble
   // wider than its start cell) and on the board.
@@ -71,6 +72,7 @@ void Simulation::setParams(const Params& params) {
   mass_ = params_.marbleMass();
   inertia_ = params_.marbleInertia();
   frame_ = gridFrame();
+  substep_ = params_.step / params_.substeps;
 }
 
 SimulationState Simulation::state() const {
@@ -196,8 +198,7 @@ double Simulation::energy() const {
   // belongs to: semi-implicit Euler's is the velocity half a substep back, where the marble was
   // at p - v h/2. (With both taken now, a bounce would seem to gain m g h |v_z|.)
   const double m = mass_;
-  const double h = params_.step / params_.substeps;
-  const Vec3 position = marble_.position - integrator_->velocityLag() * h * marble_.velocity;
+  const Vec3 position = marble_.position - integrator_->velocityLag() * substep_ * marble_.velocity;
   return 0.5 * m * marble_.velocity.squaredNorm() +
          0.5 * inertia_ * marble_.angular_velocity.squaredNorm() +
          m * params_.gravity * (position.z() + params_.board_position.z());
@@ -224,12 +225,18 @@ void Simulation::step() {
   // grow without bound. The step is cut into as many more substeps as keep k |v| h within
   // kMostDragDecay, |v| bounded by the speed now and what gravity adds over the step.
   if (!forces_.constant()) {
-    const double rate = forces_.drag() * (marble_.velocity.norm() + params_.gravity * params_.step);
+    // (Gravity and drag alone never take the speed past the larger of the speed now and the
+    // terminal speed, sqrt(g / k).)
+    const double speed = marble_.velocity.norm();
+    const double rate =
+        forces_.drag() * std::min(speed + params_.gravity * params_.step,
+                                  std::max(speed, std::sqrt(params_.gravity / forces_.drag())));
     if (rate * params_.step > kMostDragDecay * substeps)
       substeps =
           static_cast<int>(std::min(10000.0, std::ceil(rate * params_.step / kMostDragDecay)));
   }
   const double h = params_.step / substeps;
+  substep_ = h;
   for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
   time_ += params_.step;
   ++steps_;
@@ -268,13 +275,15 @@ void Simulation::substep(double h, double start_time) {
   // substep's forces act, so that the flight after it keeps the whole substep's gravity.
   if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
   // The contacts' forces act over the substep while the board turns: they push along its normals
-  // in its pose at the instant the scheme's forces belong to, or the scheme would be first order
-  // on a turning board: the middle of the substep (the midpoint rule), or for a velocity half a
-  // substep behind its position (semi-implicit Euler's, a leapfrog) the start. (A rotation, not
-  // normals interpolated one by one: contacts at right angles stay at right angles.)
+  // in its pose at the instant the scheme's forces belong to: the middle of the substep (the
+  // midpoint rule), or for a velocity half a substep behind its position (semi-implicit Euler's,
+  // a leapfrog) the start. With the start's, velocity Verlet and RK4 were 100 times less
+  // accurate on a turning board (all three stay first order there, through what else a substep
+  // takes at its start). A rotation, not normals interpolated one by one: contacts at right
+  // angles stay at right angles.
   const double at = 0.5 - integrator_->velocityLag();
-  forces_pose_ = start.rotation;
-  if (at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0))
+  forces_turned_ = at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0);
+  if (forces_turned_)
     forces_pose_ = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
                                       start_pitch + at * (board_.pitch() - start_pitch));
   advance(h, start_time, start, previous_spin);
@@ -404,9 +413,10 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
   double done = 0;  // fraction of the substep
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
-    // (After an impact the contacts are the end pose's, and the stretch left is short.)
+    // (After an impact the contacts are found in the end pose, and push along its normals over
+    // what is left of the substep.)
     if (impacts == 0)
-      chooseActingContacts(rest, previous_spin, &forces_pose_);
+      chooseActingContacts(rest, previous_spin, forces_turned_ ? &forces_pose_ : nullptr);
     else
       chooseActingContacts(rest, frame_.angular_velocity, nullptr);
     dynamics.beginStretch();

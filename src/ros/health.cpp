@@ -25,18 +25,16 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
                        : before_.ros_time > 0 && ros_elapsed >= 0 && wall > 0 ? ros_elapsed / wall
                                                                               : 0;
 
+  // A period that was paused or waiting for ROS time at either end ran for only part of it:
+  // its factor says nothing of the node's speed.
+  const bool stood = now_.paused || before_.paused || now_.ahead > 0 || before_.ahead > 0;
   using Level = diagnostic_msgs::DiagnosticStatus;
   if (now_.paused)
     status.summary(Level::OK, "paused");
-  else if (now_.ahead > 0)
-    status.summaryf(Level::OK,
-                    "%.3g s ahead of ROS time (steps taken while paused): waiting for it to "
-                    "catch up",
-                    now_.ahead);
   else if (skipped > 0)
     status.summaryf(Level::WARN, "fell behind: skipped %llu steps to catch up",
                     static_cast<unsigned long long>(skipped));
-  else if (!now_.lockstep && aimed > 0 && factor < 0.9 * aimed)
+  else if (!stood && !now_.lockstep && aimed > 0 && factor < 0.9 * aimed)
     status.summaryf(Level::WARN, "running at %.2f times real time, below the %.2f aimed at", factor,
                     aimed);
   else if (now_.lost > before_.lost)
@@ -45,6 +43,11 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   else if (now_.queued > 1000)
     status.summaryf(Level::WARN, "%zu tilt commands wait for their step (stamped far ahead?)",
                     now_.queued);
+  else if (now_.ahead > 0)
+    status.summaryf(Level::OK,
+                    "%.3g s ahead of ROS time (steps taken while paused): waiting for it to "
+                    "catch up",
+                    now_.ahead);
   else
     status.summary(Level::OK, "running");
   status.add("real-time factor", factor);

@@ -48,7 +48,6 @@ std::uint64_t SeqGaps::take(const std::string& name, std::uint32_t seq) {
   Source& source = sourceNamed(name);
   source.heard = ++count_;
   const std::uint64_t now = ++source.count;
-  const std::uint64_t lost = judgeGaps(&source);
   auto& all = source.series;
   // The message continues a series (or repeats its last: a publisher that leaves seq alone).
   const auto continued = std::find_if(all.begin(), all.end(), [&](const Series& s) {
@@ -70,6 +69,9 @@ std::uint64_t SeqGaps::take(const std::string& name, std::uint32_t seq) {
     }
     all.push_back(fresh);
   }
+  // Judged once the message has gone to its series: one that continues the series before a gap
+  // on the very message the gap is judged at shows it was no loss.
+  const std::uint64_t lost = judgeGaps(&source);
   forgetEnded(&source);
   return lost;
 }

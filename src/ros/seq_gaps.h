@@ -7,7 +7,8 @@
 // recorded agents arrive interleaved, and a looped bag or a restarted publisher starts again from
 // a lower seq. So a message that continues no series starts one; one that starts above another
 // series leaves a gap after it, which counts as lost only once that series has stayed quiet for
-// kQuiet of the source's messages: had it been another publisher's, it would have gone on.
+// kQuiet of the source's messages: had it been another publisher's, it would have gone on. (So a
+// gap is told kQuiet messages late, and one in the source's last kQuiet messages is never told.)
 #pragma once
 
 #include <cstdint>

@@ -70,6 +70,11 @@ TEST(SeqGaps, TwoPublishersUnderOneNameAreNoLoss) {
       seqs = seqs + run(500 + i * burst, burst) + run(10 + i * burst, burst);
     EXPECT_EQ(lostIn(&gaps, seqs + run(10 + 20 * burst, 3 * SeqGaps::kQuiet)), 0u) << burst;
   }
+  // The other publisher going on on the very message the gap is judged at.
+  SeqGaps judged;
+  EXPECT_EQ(lostIn(&judged, run(10, 10) + run(500, SeqGaps::kQuiet) + run(20, 5) +
+                                run(600, 2 * SeqGaps::kQuiet)),
+            0u);
   // Three, and one of them losing 30 of its own: those are told.
   SeqGaps gaps;
   std::vector<std::uint32_t> seqs;

@@ -299,6 +299,15 @@ class ServicesTest(unittest.TestCase):
         self.assertIsNotNone(ahead, "/diagnostics does not say the simulation is ahead")
         caught_up = self.states.wait(lambda m: stamp_ns(m) > stamp_ns(stepped), timeout=10)
         self.assertIsNotNone(caught_up, "no new state after ROS time caught up")
+        # Nor is the period that waited taken for a slow node (it warned "running at 0.40 times
+        # real time" on the report after the catch-up).
+        with self.diagnostics.lock:
+            seen = len(self.diagnostics.all)
+        time.sleep(2.5)
+        with self.diagnostics.lock:
+            said = [st.message for a in self.diagnostics.all[seen:] for st in a.status]
+        self.assertTrue(said, "no /diagnostics after the catch-up")
+        self.assertFalse([m for m in said if "below the" in m], said)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,8 @@
 
 namespace marble_maze_ros {
 
-Health::Health(ros::NodeHandle& nh) : updater_(nh, ros::NodeHandle("~")) {
+Health::Health(ros::NodeHandle& nh, std::function<HealthFigures()> figures)
+    : updater_(nh, ros::NodeHandle("~")), figures_(std::move(figures)) {
   updater_.setHardwareID("marble_maze simulation");
   updater_.add("simulation", this, &Health::report);
   before_at_ = ros::WallTime::now();
@@ -13,6 +14,7 @@ Health::Health(ros::NodeHandle& nh) : updater_(nh, ros::NodeHandle("~")) {
 }
 
 void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  now_ = figures_();
   const ros::WallTime at = ros::WallTime::now();
   const double wall = (at - before_at_).toSec();
   const double factor = wall > 0 ? (now_.simulated_time - before_.simulated_time) / wall : 0;

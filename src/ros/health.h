@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 namespace marble_maze_ros {
 
@@ -34,15 +35,16 @@ struct HealthFigures {
 
 class Health {
  public:
-  explicit Health(ros::NodeHandle& nh);
-  /// The figures as they stand; the node calls it whenever they change.
-  void set(const HealthFigures& figures) { now_ = figures; }
+  /// `figures` gives them as they stand, asked at each report: a figure the node set only when
+  /// it stepped went stale while it did not (paused, a clock standing still).
+  Health(ros::NodeHandle& nh, std::function<HealthFigures()> figures);
 
  private:
   void report(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   diagnostic_updater::Updater updater_;
   ros::WallTimer timer_;
+  std::function<HealthFigures()> figures_;
   HealthFigures now_, before_;
   ros::WallTime before_at_;
 };

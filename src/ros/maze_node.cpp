@@ -77,7 +77,7 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
       pnh, std::vector<mm::ParamInfo>{factor},
       [this](const Reconfigure::Changes& changes) { return reconfigure(changes); },
       [this](const std::string& key) { return valueOf(key); });
-  health_ = std::make_unique<Health>(nh);
+  health_ = std::make_unique<Health>(nh, [this] { return healthFigures(); });
 
   out_->publishScene(session_->simulation(), false);
   writeBackSettings();
@@ -216,7 +216,6 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
       last_frozen_ = now;
       publishDue(true);
     }
-    updateHealth();
     return;
   }
   // (Negative after steps taken while paused, which keep their exact stamps: nothing is due, and
@@ -234,7 +233,6 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
     due = most;
   }
   if (due > 0) runSteps(static_cast<std::uint64_t>(due));
-  updateHealth();
 }
 
 void MazeNode::onFreeRun(const ros::WallTimerEvent& event) {
@@ -245,7 +243,6 @@ void MazeNode::onFreeRun(const ros::WallTimerEvent& event) {
       last_clock_said_ = event.current_real;
       publishClock();
     }
-    updateHealth();
     return;
   }
   const ros::WallTime begin = ros::WallTime::now();
@@ -266,7 +263,6 @@ void MazeNode::onFreeRun(const ros::WallTimerEvent& event) {
     while ((ros::WallTime::now() - begin).toSec() < kFreeRunSlice) runSteps(100);
   }
   publishClock();
-  updateHealth();
 }
 
 void MazeNode::runSteps(std::uint64_t count) {
@@ -303,7 +299,7 @@ void MazeNode::publishNow() {
   publishClock();
 }
 
-void MazeNode::updateHealth() {
+HealthFigures MazeNode::healthFigures() const {
   HealthFigures f;
   f.simulated_time = simTime();
   f.aimed_factor = settings_.own_clock      ? settings_.real_time_factor
@@ -320,7 +316,7 @@ void MazeNode::updateHealth() {
   if (f.follows_ros_time && clock_.anchored())
     f.ahead = std::max(0.0, (stampNow() - ros::Time::now()).toSec());
   f.lockstep = settings_.lockstep > 0;
-  health_->set(f);
+  return f;
 }
 
 // --- Inputs --------------------------------------------------------------------------------------
@@ -337,7 +333,6 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
       runSteps(stepsPer(settings_.lockstep));
       publishNow();
     }
-    updateHealth();
     return 0;
   }
   // Paused, time stands still: a command acts at the next step taken (by `step`, or on resume),

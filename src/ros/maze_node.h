@@ -51,7 +51,8 @@ class MazeNode {
   double simTime() const { return session_->simulation().time(); }
   double step() const { return session_->simulation().params().step; }
   void publishClock();
-  void updateHealth();
+  /// What /diagnostics reports, as it stands now.
+  HealthFigures healthFigures() const;
   /// Ties the current step to ROS time `origin`, and says so on `inputs`.
   void reanchor(const ros::Time& origin);
   /// Runs `change` (another maze, other physics); a step of another length from then on is

@@ -29,6 +29,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray
 from rosgraph_msgs.msg import Clock, Log
 
 from marble_maze.msg import BoardTilt, MarbleState
@@ -291,6 +292,20 @@ class SimTimeTest(unittest.TestCase):
         self.assertEqual(self.clock.now(), held)
         self.assertLessEqual(ns(last.header.stamp), held)
         self.check_latest_follows_clock()
+        # /diagnostics goes on counting what comes meanwhile (its figures were set only when the
+        # node stepped, and said 0 commands a second). The command is the one in force: the
+        # motion checked next does not change.
+        reports = []
+        sub = rospy.Subscriber("/diagnostics", DiagnosticArray, reports.append, queue_size=100)
+        for _ in range(40):
+            self.tilt_pub.publish(BoardTilt(roll=ROLL, pitch=0.0))
+            time.sleep(0.05)
+        sub.unregister()
+        rates = [float(v.value) for a in reports for st in a.status for v in st.values
+                 if v.key == "tilt commands per second"]
+        self.assertTrue(rates, "no /diagnostics while the clock stood still")
+        self.assertGreater(max(rates), 5.0, rates)
+        self.assertEqual(self.since(index), [])
 
     def test_5_clock_goes_on(self):
         held = self.clock.now()

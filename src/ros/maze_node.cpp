@@ -482,7 +482,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
 }
 
 std::string MazeNode::valueOf(const std::string& key) const {
-  if (key == "real_time_factor") return exactText(settings_.real_time_factor);
+  if (key == "real_time_factor") return mm::exactText(settings_.real_time_factor);
   return mm::getParam(session_->simulation().params(), key);
 }
 

@@ -164,12 +164,6 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   return s;
 }
 
-std::string exactText(double value) {
-  std::ostringstream out;
-  out << std::setprecision(15) << value;
-  return out.str();
-}
-
 std::string whyTooMuchWork(double steps, const mm::Params& params, const std::string& asked) {
   const std::string most = std::to_string(kMostStepsPerCommand);
   if (steps > kMostStepsPerCommand) return asked + " more than " + most + " steps a command";
@@ -180,10 +174,10 @@ std::string whyTooMuchWork(double steps, const mm::Params& params, const std::st
 }
 
 std::string whyNotRunnable(const NodeSettings& settings, const mm::Params& params) {
-  const std::string step = "step: " + exactText(params.step) + " s makes ";
+  const std::string step = "step: " + mm::exactText(params.step) + " s makes ";
   const std::string why =
       whyTooMuchWork(settings.lockstep / params.step, params,
-                     step + "~lockstep's " + exactText(settings.lockstep) + " s");
+                     step + "~lockstep's " + mm::exactText(settings.lockstep) + " s");
   if (!why.empty()) return why;
   // Rates of simulated time: at most one message a step.
   const double per_second = 1.0 / params.step;
@@ -191,8 +185,8 @@ std::string whyNotRunnable(const NodeSettings& settings, const mm::Params& param
        {std::pair<const char*, double>{"~publish_rate", settings.publish_rate},
         {"~marker_rate", settings.marker_rate}})
     if (rate > per_second * (1 + 1e-9))
-      return step + exactText(per_second) + " steps a second, fewer than " + key + "'s " +
-             exactText(rate) + " Hz";
+      return step + mm::exactText(per_second) + " steps a second, fewer than " + key + "'s " +
+             mm::exactText(rate) + " Hz";
   return "";
 }
 

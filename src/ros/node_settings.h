@@ -61,8 +61,6 @@ std::string whyTooMuchWork(double steps, const marble_maze::Params& params,
 /// ~marker_rate) above one a step. Checked at start and when a maze is loaded or a value changed
 /// live, with the same words.
 std::string whyNotRunnable(const NodeSettings& settings, const marble_maze::Params& params);
-/// A number as a user typed it, without binary noise (0.1, not 0.10000000000000001).
-std::string exactText(double value);
 
 /// Puts every value in force on the parameter server, under the node's private namespace;
 /// returns the keys it set.

@@ -135,7 +135,10 @@ class Simulation {
 
   void substep(double h, double start_time);
   void pushOut();
-  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin);
+  /// The substep after its start's impacts; `forces_pose`, when not the start's, is the board's
+  /// pose the contacts push in until the first impact.
+  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin,
+               const Mat3* forces_pose);
   /// The contacts that act over a stretch (acting_): all but those the marble is leaving. With a
   /// `pose`, their normals are the board's in it (contacts_ holds those of the substep's start).
   void chooseActingContacts(double duration, const Vec3& previous_spin, const Mat3* pose);
@@ -167,8 +170,6 @@ class Simulation {
   // sample; a bent path leaves out the contacts it is leaving (faster than resting and than the
   // surface under it changes; it may come back to them: an impact then, found by the sweep).
   std::vector<Contact> acting_;
-  Mat3 forces_pose_ = Mat3::Identity();  // the board's pose when the substep's contacts push,
-  bool forces_turned_ = false;           // when it is not the substep's start pose
   double substep_ = 0;  // s: the last step's substep (shorter when the step was cut)
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };

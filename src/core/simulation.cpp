@@ -282,11 +282,12 @@ void Simulation::substep(double h, double start_time) {
   // takes at its start). A rotation, not normals interpolated one by one: contacts at right
   // angles stay at right angles.
   const double at = 0.5 - integrator_->velocityLag();
-  forces_turned_ = at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0);
-  if (forces_turned_)
-    forces_pose_ = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
-                                      start_pitch + at * (board_.pitch() - start_pitch));
-  advance(h, start_time, start, previous_spin);
+  Mat3 forces_pose;
+  const bool turned = at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0);
+  if (turned)
+    forces_pose = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
+                                     start_pitch + at * (board_.pitch() - start_pitch));
+  advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
   checkFinish(start_time + h);
@@ -402,7 +403,7 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const 
 }
 
 void Simulation::advance(double h, double start_time, const GridFrame& start,
-                         const Vec3& previous_spin) {
+                         const Vec3& previous_spin, const Mat3* forces_pose) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
   // stretch is swept from where the marble was on the board at the start (the board then in its
@@ -416,7 +417,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     // (After an impact the contacts are found in the end pose, and push along its normals over
     // what is left of the substep.)
     if (impacts == 0)
-      chooseActingContacts(rest, previous_spin, forces_turned_ ? &forces_pose_ : nullptr);
+      chooseActingContacts(rest, previous_spin, forces_pose);
     else
       chooseActingContacts(rest, frame_.angular_velocity, nullptr);
     dynamics.beginStretch();

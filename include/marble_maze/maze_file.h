@@ -16,12 +16,29 @@ struct Scene {
   Params params;
   std::string text;    ///< the maze file's text it was read from ("" when built in code)
   std::string source;  ///< where the text came from: a path or "<embedded:NAME>"
-  /// The parameters the file's physics section sets, in its order (the rest are defaults).
-  std::vector<std::string> physics_keys;
+  /// A parameter the file's physics section sets, and where its value is (1-based).
+  struct FileKey {
+    std::string key;
+    int line = 0;
+    int column = 0;
+  };
+  /// The parameters the file's physics section sets, in its order (the rest are defaults), less
+  /// those set over it since (overrideParam).
+  std::vector<FileKey> physics_keys;
   /// Where the file marks the start ('S'): "SOURCE:LINE:COLUMN" ("" when built in code), for an
   /// error about the start cell.
   std::string start_in_file;
 };
+
+/// Sets one parameter of the scene over what its file says (setParam; ParamError naming the key):
+/// the file then no longer answers for it, and an error about the value names the key alone.
+void overrideParam(Scene* scene, const std::string& key, const std::string& value);
+
+/// Replaces the scene's parameters wholesale (a recording's): the file answers for none of them.
+void replaceParams(Scene* scene, const Params& params);
+
+/// Where the scene's file sets the key, or nullptr when it does not (or it was set over since).
+const Scene::FileKey* findFileKey(const Scene& scene, const std::string& key);
 
 /// A malformed maze file. what() reads "SOURCE:LINE:COLUMN: message" (1-based line and column).
 struct MazeFileError : std::runtime_error {

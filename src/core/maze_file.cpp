@@ -487,7 +487,7 @@ class SceneParser {
                        [&](const ParamInfo& info) { return info.key == key; });
   }
 
-  Params readPhysics(const Entry* physics, std::vector<std::string>* keys) const {
+  Params readPhysics(const Entry* physics, std::vector<Scene::FileKey>* keys) const {
     Params params = defaults_;
     std::map<std::string, Location> where;  // each key's value in the file
     if (physics && !physics->value.IsNull()) {
@@ -495,8 +495,8 @@ class SceneParser {
         const std::string text = physicsText(entry);
         try {
           setParam(params, entry.key, text);
-          keys->push_back(entry.key);
           where[entry.key] = at(entry.value);
+          keys->push_back({entry.key, where[entry.key].line, where[entry.key].column});
         } catch (const ParamError& e) {
           fail(isParamKey(entry.key) ? at(entry.value) : at(entry.key_node), e.what());
         }
@@ -524,6 +524,25 @@ class SceneParser {
 };
 
 }  // namespace
+
+void overrideParam(Scene* scene, const std::string& key, const std::string& value) {
+  setParam(scene->params, key, value);
+  auto& keys = scene->physics_keys;
+  keys.erase(std::remove_if(keys.begin(), keys.end(),
+                            [&](const Scene::FileKey& k) { return k.key == key; }),
+             keys.end());
+}
+
+void replaceParams(Scene* scene, const Params& params) {
+  scene->params = params;
+  scene->physics_keys.clear();
+}
+
+const Scene::FileKey* findFileKey(const Scene& scene, const std::string& key) {
+  for (const Scene::FileKey& k : scene.physics_keys)
+    if (k.key == key) return &k;
+  return nullptr;
+}
 
 MazeFileError::MazeFileError(const std::string& source, int line, int column,
                              const std::string& message)

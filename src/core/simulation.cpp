@@ -51,13 +51,17 @@ Simulation::Simulation(const Scene& scene)
   const std::string why = whyNotPlaceable(startInBoard());
   if (!why.empty()) {
     std::ostringstream message;
-    if (params_.has_start_position)
+    if (params_.has_start_position) {
       message << "start_position: the marble cannot start there: " << why;
-    else
+      // Set by the maze file: the error points at it there, as the file's other errors do.
+      if (const Scene::FileKey* set = findFileKey(scene, "start_position"))
+        throw MazeFileError(scene.source, set->line, set->column, message.str());
+    } else {
       message << "marble_radius: a marble of radius " << params_.marble_radius
               << " m does not fit the start cell (" << maze_.start().i << ", " << maze_.start().j
               << (scene.start_in_file.empty() ? "" : ", the 'S' at " + scene.start_in_file)
               << "): " << why;
+    }
     throw ParamError(message.str());
   }
 }

@@ -33,6 +33,8 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
   settings_ = readSettings(pnh, &scene);
   try {
     session_ = std::make_unique<mm::Session>(scene, settings_.session);
+  } catch (const mm::MazeFileError& e) {  // the marble where the maze file cannot have it
+    throw std::runtime_error(pnh.resolveName("maze") + ": " + e.what());
   } catch (const mm::ParamError& e) {  // the marble where it cannot be: the key is ours
     throw std::runtime_error(pnh.getNamespace() + "/" + e.what());
   }

@@ -106,7 +106,7 @@ void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& s) {
 
 mm::Scene sceneFor(const std::string& maze, const NodeSettings& settings) {
   mm::Scene scene = mm::loadScene(maze);
-  for (const auto& [key, text] : settings.overrides) mm::setParam(scene.params, key, text);
+  for (const auto& [key, text] : settings.overrides) mm::overrideParam(&scene, key, text);
   mm::validate(scene.params);
   return scene;
 }

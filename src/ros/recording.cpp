@@ -94,7 +94,7 @@ mm::Params Replayer::paramsOf(const std::string& text) const {
 Replayer::Replayer(const Recording& recording, const Overrides& overrides)
     : recording_(recording), overrides_(overrides) {
   mm::Scene scene = mm::parseScene(recording.scene.maze_text, recording.scene.maze_source);
-  scene.params = paramsOf(recording.snapshot.params);
+  mm::replaceParams(&scene, paramsOf(recording.snapshot.params));
   mm::SessionSettings settings;
   settings.tilt_timeout = recording.scene.tilt_timeout;
   settings.rate_timeout = recording.scene.rate_timeout;
@@ -171,7 +171,7 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
         break;
       case K::LOAD: {
         mm::Scene scene = mm::parseScene(in.maze_text, in.maze_source);
-        scene.params = paramsOf(in.params);
+        mm::replaceParams(&scene, paramsOf(in.params));
         session_->load(scene);
         followStep();
         break;

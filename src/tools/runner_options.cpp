@@ -177,10 +177,10 @@ Run prepare(const Options& o) {
   };
   try {
     scene = loadScene(o.maze);
-    for (const std::string& key : scene.physics_keys)
-      initial_tilt_set = initial_tilt_set || setsTilt(key);
+    for (const Scene::FileKey& set : scene.physics_keys)
+      initial_tilt_set = initial_tilt_set || setsTilt(set.key);
     for (const auto& [key, value] : o.sets) {
-      setParam(scene.params, key, value);
+      overrideParam(&scene, key, value);
       initial_tilt_set = initial_tilt_set || setsTilt(key);
     }
   } catch (const MazeFileError& e) {
@@ -201,6 +201,8 @@ Run prepare(const Options& o) {
   }
   try {
     run.sim = std::make_unique<Simulation>(scene);
+  } catch (const MazeFileError& e) {
+    throw UsageError(e.what());
   } catch (const ParamError& e) {
     throw UsageError(e.what());
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "marble_maze/maze_file.h"
+#include "marble_maze/simulation.h"
 
 namespace marble_maze {
 namespace {
@@ -240,6 +241,35 @@ TEST(MazeFile, PhysicsOverridesTheDefaults) {
 }
 
 // --- malformed files: each error points at the culprit and says what was expected --------------
+
+// A start_position the file sets is checked against the maze only when a simulation starts from
+// it; the error still points at the value in the file, and not once the key is set over it.
+TEST(MazeFileError, AStartPositionInAWallNamesItsPlaceInTheFile) {
+  // (The left wall spans x = -0.0275 to -0.0225 m from the pivot.)
+  const Scene scene =
+      parseScene(kGrid + kLayout + "physics:\n  start_position: [-0.025, 0, 0.006]\n", "bad.yaml");
+  try {
+    Simulation sim(scene);
+    ADD_FAILURE() << "a marble inside the wall was accepted";
+  } catch (const MazeFileError& e) {
+    EXPECT_EQ(e.line, 10);
+    EXPECT_EQ(e.column, 19);
+    EXPECT_NE(std::string(e.what()).find(
+                  "bad.yaml:10:19: start_position: the marble cannot start there: inside tile"),
+              std::string::npos)
+        << e.what();
+  }
+  Scene over = scene;
+  overrideParam(&over, "start_position", "-0.025,0,0.006");
+  EXPECT_EQ(findFileKey(over, "start_position"), nullptr);
+  EXPECT_THROW(Simulation{over}, ParamError);
+  Scene replaced = scene;
+  replaceParams(&replaced, scene.params);
+  EXPECT_THROW(Simulation{replaced}, ParamError);
+  // A start the maze allows is taken from the file as before.
+  overrideParam(&over, "start_position", "-0.0125,0,0.006");
+  EXPECT_NO_THROW(Simulation{over});
+}
 
 TEST(MazeFileError, UnknownPhysicsKeyNamesTheKeyAndLine) {
   EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  model: smooth\n  restitutoin: 0.2\n",

@@ -40,10 +40,10 @@ struct GridFrame {
 struct Contact {
   Vec3 normal;       ///< world, unit, from the tile towards the marble's centre
   Vec3 grid_normal;  ///< the same in the grid frame, where the tiles do not turn
-  Vec3 point;        ///< world, the closest point of the tile
+  Vec3 grid_point;   ///< the tile's closest point, in the grid frame (where the sweep wants it)
   /// World, v_b of eq. (1): the board's velocity where the marble's surface meets the normal
-  /// (at `point` along the normal; across it, within |w| times the marble's depth into the tile
-  /// or gap from it, at most the margin once pushed out). At an impact they are one point.
+  /// (at `grid_point` along the normal; across it, within |w| times the marble's depth into the
+  /// tile or gap from it, at most the margin once pushed out). At an impact they are one point.
   Vec3 surface_velocity;
   double depth = 0;  ///< radius minus distance: > 0 when the marble overlaps the tile
   Index3 tile = Index3::Zero();

@@ -437,7 +437,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       q = c + contact.normal * inside;
       contact.depth = radius + inside;
     }
-    contact.point = q;
+    contact.grid_point = q;
     contact.tile = t;
     addContact(contacts, contact);
   };
@@ -464,7 +464,6 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
   for (Contact& contact : *contacts) {
     contact.grid_normal = contact.normal;
     contact.normal = frame.rotation * contact.normal;
-    contact.point = frame.toWorld(contact.point);
     // The board's velocity where the marble's surface meets the normal (not at the tile's
     // nearest point, up to the margin away, across the normal the same): so every contact of a
     // marble wedged on a turning board asks the same rigid motion of it, as it must to stay
@@ -576,9 +575,9 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   hit->fraction = best;
   hit->contact.grid_normal = best_normal;
   hit->contact.normal = frame.rotation * best_normal;
-  hit->contact.point = frame.toWorld(best_point);
+  hit->contact.grid_point = best_point;
   // Met at the radius: the marble's surface meets the normal at the tile's point.
-  hit->contact.surface_velocity = frame.surfaceVelocity(hit->contact.point);
+  hit->contact.surface_velocity = frame.surfaceVelocity(frame.toWorld(best_point));
   hit->contact.depth = 0;
   hit->contact.tile = best_tile;
   return true;

@@ -291,10 +291,11 @@ void Simulation::substep(double h, double start_time) {
   if (turned)
     forces_pose = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
                                      start_pitch + at * (board_.pitch() - start_pitch));
-  advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
+  const Vec3 in_grid =
+      advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
-  checkFinish(start_time + h);
+  checkFinish(start_time + h, in_grid);
 }
 
 void Simulation::pushOut() {
@@ -351,7 +352,8 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     // bringing the marble to the board's motion or letting it go.
     const double away = relative.dot(normal);
     const auto drift = [&] {
-      const double w = frame_.angular_velocity.norm(), p = c.point.norm();
+      const double w = frame_.angular_velocity.norm(),
+                   p = (c.grid_point - frame_.grid_pivot).norm();  // from the pivot
       return w * (marble_.velocity.norm() + relative.norm() + w * p) * duration +
              (frame_.angular_velocity - previous_spin).norm() * p;
     };
@@ -393,7 +395,7 @@ void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
   if (path->curved) path->velocity_change = path->end.linear - path->velocity;
 }
 
-void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const {
+void Simulation::keepOnHeldContacts(Sweep* sweep) const {
   // A contact that holds the marble leaves it no normal speed relative to the board, so it
   // stays on the surface: what the board's turning adds to the path across it (second order in
   // the step) would otherwise lift it off or sink it in by a few nanometres a step.
@@ -402,11 +404,11 @@ void Simulation::keepOnHeldContacts(const GridFrame& start, Sweep* sweep) const 
     const Vec3& normal = acting_[i].grid_normal;
     sweep->path -= sweep->path.dot(normal) * normal;
     sweep->bend -= sweep->bend.dot(normal) * normal;
-    sweep->keepTo(normal, start.toGrid(acting_[i].point));
+    sweep->keepTo(normal, acting_[i].grid_point);
   }
 }
 
-void Simulation::advance(double h, double start_time, const GridFrame& start,
+Vec3 Simulation::advance(double h, double start_time, const GridFrame& start,
                          const Vec3& previous_spin, const Mat3* forces_pose) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
@@ -416,6 +418,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
   // moves on only as fast as it moves relative to the board.
   ContactDynamics dynamics(this);
   double done = 0;  // fraction of the substep
+  Vec3 in_grid;     // where the marble stands on the board, as the sweep put it
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
     // (After an impact the contacts are found in the end pose, and push along its normals over
@@ -436,7 +439,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     if (impacts == 0) {
       sweep.from = start.toGrid(marble_.position);
       sweep.path = frame_.toGrid(marble_.position + path.displacement()) - sweep.from - sweep.bend;
-      keepOnHeldContacts(start, &sweep);
+      keepOnHeldContacts(&sweep);
     } else {
       const Vec3 carried = frame_.surfaceVelocity(marble_.position) * rest;
       sweep.from = frame_.toGrid(marble_.position);
@@ -452,12 +455,14 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     counts_.sweeps_clear += clear;
     counts_.tiles_swept += hit.tiles_visited;
     if (!hits) {
-      marble_.position = frame_.toWorld(sweep.at(1));
+      in_grid = sweep.at(1);
+      marble_.position = frame_.toWorld(in_grid);
       marble_.velocity = path.end.linear;
       marble_.angular_velocity = path.end.angular;
-      return;
+      return in_grid;
     }
-    marble_.position = frame_.toWorld(sweep.at(hit.fraction));
+    in_grid = sweep.at(hit.fraction);
+    marble_.position = frame_.toWorld(in_grid);
     marble_.velocity = path.velocityAt(hit.fraction);
     marble_.angular_velocity = path.spinAt(hit.fraction);
     done += (1 - done) * hit.fraction;
@@ -468,13 +473,13 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     if (!found) contacts_.push_back(hit.contact);
     marble_.contacts = static_cast<int>(contacts_.size());
     impact(start_time + done * h);
-    if (!(done < 1)) return;  // at the very end of the substep: nothing left to move
+    if (!(done < 1)) return in_grid;  // at the very end of the substep: nothing left to move
   }
   // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
+  return in_grid;
 }
 
-void Simulation::checkFinish(double time) {
-  const Vec3 p = frame_.toGrid(marble_.position);
+void Simulation::checkFinish(double time, const Vec3& p) {
   const double r = params_.marble_radius;
   const double floor_top = maze_.floorTop();
   // Only a marble low enough to finish needs its column looked up.

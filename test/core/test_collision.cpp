@@ -45,7 +45,7 @@ TEST(FindContacts, FaceContactHasTheFaceNormalAndDepth) {
   ASSERT_EQ(contacts.size(), 1u);
   EXPECT_NEAR((contacts[0].normal - Vec3(0, 0, 1)).norm(), 0, kTol);
   EXPECT_NEAR(contacts[0].depth, 0.001, kTol);
-  EXPECT_NEAR((contacts[0].point - Vec3(0.055, 0.055, 0.01)).norm(), 0, kTol);
+  EXPECT_NEAR((contacts[0].grid_point - Vec3(0.055, 0.055, 0.01)).norm(), 0, kTol);
   EXPECT_EQ(contacts[0].tile, Index3(5, 5, 0));
 }
 
@@ -203,7 +203,7 @@ TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
     ASSERT_EQ(with_kept.size(), fresh.size()) << "at " << grid.transpose();
     for (std::size_t i = 0; i < fresh.size(); ++i) {
       EXPECT_EQ(with_kept[i].normal, fresh[i].normal);
-      EXPECT_EQ(with_kept[i].point, fresh[i].point);
+      EXPECT_EQ(with_kept[i].grid_point, fresh[i].grid_point);
       EXPECT_EQ(with_kept[i].surface_velocity, fresh[i].surface_velocity);
       EXPECT_EQ(with_kept[i].depth, fresh[i].depth);
       EXPECT_EQ(with_kept[i].tile, fresh[i].tile);
@@ -268,8 +268,8 @@ TEST(TimeOfImpact, ABentPathMeetsAnEdgeWhereItsDistanceFirstReachesTheRadius) {
   while (hi - lo > 1e-15) (gap(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
   EXPECT_NEAR(hit.fraction, hi, 1e-12);
   // It touched the top edge along y (x = 0.02, z = 0.01), not a face.
-  EXPECT_NEAR(hit.contact.point.x(), 0.02, 1e-15);
-  EXPECT_NEAR(hit.contact.point.z(), 0.01, 1e-15);
+  EXPECT_NEAR(hit.contact.grid_point.x(), 0.02, 1e-15);
+  EXPECT_NEAR(hit.contact.grid_point.z(), 0.01, 1e-15);
   EXPECT_LT(hit.contact.normal.x(), -0.1);  // from the edge towards the centre: up and back
   EXPECT_GT(hit.contact.normal.z(), 0.1);
 }
@@ -310,7 +310,7 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
       if (n % 5 == 1 && std::abs(c.normal.z()) < 1e-12 &&
           std::abs(std::abs(c.normal.x()) + std::abs(c.normal.y()) - 1) < 1e-12) {
         sweep.path -= sweep.path.dot(c.normal) * c.normal;
-        sweep.keepTo(c.normal, c.point);
+        sweep.keepTo(c.normal, c.grid_point);
       }
     if (n % 4 == 3)  // started elsewhere than where the near tiles were gathered
       sweep.from += near.skin * Vec3(uniform(-1, 1), uniform(-1, 1), on_floor ? 0 : uniform(-1, 1));

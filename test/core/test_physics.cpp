@@ -281,7 +281,7 @@ TEST(Impact, SimultaneousImpactsThatNewtonsLawWouldMakeGainEnergyKeepItInstead) 
   std::vector<Contact> walls(2);
   walls[0].normal = Vec3(1, 0, 0);
   walls[1].normal = Vec3(std::cos(80 * kPi / 180), std::sin(80 * kPi / 180), 0);
-  for (Contact& c : walls) c.point = c.surface_velocity = Vec3::Zero();
+  for (Contact& c : walls) c.grid_point = c.surface_velocity = Vec3::Zero();
   const Vec3 approach = -Vec3(std::cos(10 * kPi / 180), std::sin(10 * kPi / 180), 0);
   Velocities body;
   body.linear = approach;
@@ -312,7 +312,7 @@ TEST(Impact, AFloorAndAWallStruckAtOnceWithFrictionRespondContinuouslyInE) {
     std::vector<Contact> contacts(2);
     contacts[0].normal = Vec3(0, 0, 1);   // the floor
     contacts[1].normal = Vec3(-1, 0, 0);  // the wall
-    for (Contact& c : contacts) c.point = c.surface_velocity = Vec3::Zero();
+    for (Contact& c : contacts) c.grid_point = c.surface_velocity = Vec3::Zero();
     Velocities body;
     body.linear = Vec3(1, 0, -0.14);
     std::vector<ContactOutcome> outcomes;
@@ -340,7 +340,7 @@ TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
   std::vector<Contact> groove(2);
   groove[0].normal = Vec3(0, 0, 1);
   groove[1].normal = Vec3(1, 0, 0);
-  for (Contact& c : groove) c.point = c.surface_velocity = Vec3::Zero();
+  for (Contact& c : groove) c.grid_point = c.surface_velocity = Vec3::Zero();
   Velocities body;
   body.linear = Vec3(-0.004, 0, -0.0098);  // a step of a tilted board's gravity
   std::vector<ContactOutcome> outcomes;
@@ -374,8 +374,7 @@ TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
   corner[1].normal = Vec3(1, 0, 0);
   corner[2].normal = Vec3(0, 1, 0);
   for (Contact& c : corner) {
-    c.point = centre - p.marble_radius * c.normal;
-    c.surface_velocity = board_spin.cross(c.point);
+    c.surface_velocity = board_spin.cross(centre - p.marble_radius * c.normal);
   }
   Velocities body;
   body.linear = board_spin.cross(centre) + Vec3(-0.004, -0.003, -0.0098);

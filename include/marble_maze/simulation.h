@@ -138,7 +138,7 @@ class Simulation {
   /// The substep after its start's impacts; `forces_pose`, when not the start's, is the board's
   /// pose the contacts push in until the first impact. Returns where the marble ends in the grid
   /// frame, as the sweep put it (its world position is that taken into the world).
-  Vec3 advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin,
+  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin,
                const Mat3* forces_pose);
   /// The contacts that act over a stretch (acting_): all but those the marble is leaving. With a
   /// `pose`, their normals are the board's in it (contacts_ holds those of the substep's start).
@@ -146,7 +146,7 @@ class Simulation {
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(Sweep* sweep) const;
   void impact(double time);
-  void checkFinish(double time, const Vec3& in_grid);
+  void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);
 
   Maze maze_;

@@ -291,11 +291,10 @@ void Simulation::substep(double h, double start_time) {
   if (turned)
     forces_pose = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
                                      start_pitch + at * (board_.pitch() - start_pitch));
-  const Vec3 in_grid =
-      advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
+  advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
-  checkFinish(start_time + h, in_grid);
+  checkFinish(start_time + h);
 }
 
 void Simulation::pushOut() {
@@ -408,7 +407,7 @@ void Simulation::keepOnHeldContacts(Sweep* sweep) const {
   }
 }
 
-Vec3 Simulation::advance(double h, double start_time, const GridFrame& start,
+void Simulation::advance(double h, double start_time, const GridFrame& start,
                          const Vec3& previous_spin, const Mat3* forces_pose) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
@@ -418,7 +417,6 @@ Vec3 Simulation::advance(double h, double start_time, const GridFrame& start,
   // moves on only as fast as it moves relative to the board.
   ContactDynamics dynamics(this);
   double done = 0;  // fraction of the substep
-  Vec3 in_grid;     // where the marble stands on the board, as the sweep put it
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
     // (After an impact the contacts are found in the end pose, and push along its normals over
@@ -455,14 +453,12 @@ Vec3 Simulation::advance(double h, double start_time, const GridFrame& start,
     counts_.sweeps_clear += clear;
     counts_.tiles_swept += hit.tiles_visited;
     if (!hits) {
-      in_grid = sweep.at(1);
-      marble_.position = frame_.toWorld(in_grid);
+      marble_.position = frame_.toWorld(sweep.at(1));
       marble_.velocity = path.end.linear;
       marble_.angular_velocity = path.end.angular;
-      return in_grid;
+      return;
     }
-    in_grid = sweep.at(hit.fraction);
-    marble_.position = frame_.toWorld(in_grid);
+    marble_.position = frame_.toWorld(sweep.at(hit.fraction));
     marble_.velocity = path.velocityAt(hit.fraction);
     marble_.angular_velocity = path.spinAt(hit.fraction);
     done += (1 - done) * hit.fraction;
@@ -473,13 +469,13 @@ Vec3 Simulation::advance(double h, double start_time, const GridFrame& start,
     if (!found) contacts_.push_back(hit.contact);
     marble_.contacts = static_cast<int>(contacts_.size());
     impact(start_time + done * h);
-    if (!(done < 1)) return in_grid;  // at the very end of the substep: nothing left to move
+    if (!(done < 1)) return;  // at the very end of the substep: nothing left to move
   }
   // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
-  return in_grid;
 }
 
-void Simulation::checkFinish(double time, const Vec3& p) {
+void Simulation::checkFinish(double time) {
+  const Vec3 p = frame_.toGrid(marble_.position);
   const double r = params_.marble_radius;
   const double floor_top = maze_.floorTop();
   // Only a marble low enough to finish needs its column looked up.

@@ -24,16 +24,22 @@ def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
     tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1)
     while tilt.get_num_connections() == 0 and not rospy.is_shutdown():
         time.sleep(0.05)
+    with lock:  # (the state the node showed when it started, if it came)
+        seen = state[0].header.stamp if state[0] is not None else rospy.Time()
     command, begin = BoardTilt(), time.time()
     for _ in range(commands):  # act, then observe: one control period each time
+        # The answer is the first state stamped later than any seen: a state shown at once by a
+        # reset, place or load (the stamp of the one before it) may still be on its way.
         with lock:
             state[0] = None
             tilt.publish(command)
-            lock.wait_for(lambda: state[0] is not None, timeout=5.0)
+            lock.wait_for(lambda: state[0] is not None and state[0].header.stamp > seen,
+                          timeout=5.0)
             s = state[0]
-        if s is None:
+        if s is None or s.header.stamp <= seen:
             raise RuntimeError("no marble_state within 5 s of a tilt command: is the node "
                                "running, with ~lockstep?")
+        seen = s.header.stamp
         ax = gain[0] * (x - s.position_in_board.x) - gain[1] * s.velocity.x
         ay = gain[0] * (y - s.position_in_board.y) - gain[1] * s.velocity.y
         command = BoardTilt(pitch=math.asin(max(-0.17, min(0.17, ax / 7.0))),

@@ -10,7 +10,7 @@ packages=("$@")
   python3-rostest python3-rosbag catkin-lint
   libtf2-ros-dev libtf2-eigen-dev libvisualization-msgs-dev libgeometry-msgs-dev libstd-srvs-dev
   libdiagnostic-updater-dev libdynamic-reconfigure-config-init-mutex-dev libnav-msgs-dev
-  libdiagnostic-msgs-dev libros-rosgraph-msgs-dev librosbag-dev
+  libdiagnostic-msgs-dev libros-rosgraph-msgs-dev librosbag-dev libtopic-tools-dev
   python3-rospy python3-tf2-ros python3-std-srvs python3-visualization-msgs python3-geometry-msgs
   python3-dynamic-reconfigure python3-nav-msgs python3-diagnostic-msgs python3-yaml
   rosbash rviz valgrind

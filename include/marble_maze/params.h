@@ -103,6 +103,10 @@ Params paramsFromText(const std::string& text, Params base = Params());
 /// The shortest text that reads back as exactly the same double.
 std::string exactText(double value);
 
+/// "NAME: VALUE is out of range [MIN, MAX]", each number exact (a value just beyond a bound must
+/// not read as the bound).
+std::string outOfRangeText(const std::string& name, double value, double min, double max);
+
 /// Reads a finite number that is the whole of `text` (spaces around it allowed); false otherwise,
 /// also for a number too small to tell from 0 or too large for a double.
 bool parseFiniteNumber(const std::string& text, double* value);

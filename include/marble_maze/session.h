@@ -30,6 +30,9 @@ struct TiltCommand {
   Kind kind = Kind::Angles;
   double roll = 0;
   double pitch = 0;
+  /// Orders the commands of one step (a node's: their stamps, in ns): they act in its order,
+  /// and those of equal order in their order of arrival.
+  std::uint64_t order = 0;
 };
 
 class Session {
@@ -37,8 +40,9 @@ class Session {
   /// Throws ParamError when the scene's parameters are inconsistent.
   explicit Session(const Scene& scene, const SessionSettings& settings = SessionSettings());
 
-  /// Queues a command in step order (equal steps keep their order of arrival). False when the
-  /// queue was full: the command for the latest step was dropped.
+  /// Queues a command in the order of its step and then of its `order` (equal ones keep their
+  /// order of arrival). False when the queue was full: the command for the latest step was
+  /// dropped.
   bool command(const TiltCommand& command);
   /// Takes `count` steps, paused or not: due commands first, then the timed actions. The events
   /// of these steps are in events().

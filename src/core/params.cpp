@@ -22,6 +22,11 @@ std::string exactText(double value) {
   return text;
 }
 
+std::string outOfRangeText(const std::string& name, double value, double min, double max) {
+  return name + ": " + exactText(value) + " is out of range [" + exactText(min) + ", " +
+         exactText(max) + "]";
+}
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -30,11 +35,7 @@ constexpr double kPi = 3.14159265358979323846;
 double parseNumber(const std::string& key, const std::string& text, double min, double max) {
   double value = 0;
   if (!parseFiniteNumber(text, &value)) throw ParamError(key + ": " + whyNotANumber(text));
-  if (value < min || value > max) {
-    std::ostringstream msg;
-    msg << key << ": " << value << " is out of range [" << min << ", " << max << "]";
-    throw ParamError(msg.str());
-  }
+  if (value < min || value > max) throw ParamError(outOfRangeText(key, value, min, max));
   return value;
 }
 
@@ -365,25 +366,19 @@ void validate(const Params& p) {
   for (const Entry& e : entries()) {
     if (!e.number) continue;
     const double value = e.number(p);
-    if (!(value >= e.info.min && value <= e.info.max)) {
-      std::ostringstream msg;
-      msg << e.info.key << ": " << value << " is out of range [" << e.info.min << ", " << e.info.max
-          << "]";
-      throw ParamError(msg.str());
-    }
+    if (!(value >= e.info.min && value <= e.info.max))
+      throw ParamError(outOfRangeText(e.info.key, value, e.info.min, e.info.max));
   }
   if (p.bounceThreshold() < p.leastBounceThreshold()) {
-    std::ostringstream msg;
-    msg << "bounce_threshold: " << p.bounceThreshold()
-        << " m/s is below 2 g step/substeps = " << p.leastBounceThreshold()
-        << " m/s, which semi_implicit_euler needs; raise it, shorten the step or leave it auto";
-    throw ParamError(msg.str());
+    throw ParamError("bounce_threshold: " + exactText(p.bounceThreshold()) +
+                     " m/s is below 2 g step/substeps = " + exactText(p.leastBounceThreshold()) +
+                     " m/s, which semi_implicit_euler needs; raise it, shorten the step or leave "
+                     "it auto");
   }
   if (p.start_velocity.stableNorm() > p.mostSpeed()) {
-    std::ostringstream msg;
-    msg << "start_velocity: " << p.start_velocity.stableNorm() << " m/s is more than the "
-        << p.mostSpeed() << " m/s (1e5 radii a step) that a step resolves";
-    throw ParamError(msg.str());
+    throw ParamError("start_velocity: " + exactText(p.start_velocity.stableNorm()) +
+                     " m/s is more than the " + exactText(p.mostSpeed()) +
+                     " m/s (1e5 radii a step) that a step resolves");
   }
   if (std::abs(p.initial_roll) > p.tilt_limit || std::abs(p.initial_pitch) > p.tilt_limit)
     throw ParamError("initial_roll/initial_pitch: beyond tilt_limit " + format(p.tilt_limit));

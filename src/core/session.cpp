@@ -15,8 +15,9 @@ std::uint64_t Session::stepsOf(double seconds) const {
 
 bool Session::command(const TiltCommand& command) {
   const auto later = std::upper_bound(
-      queue_.begin(), queue_.end(), command.step,
-      [](std::uint64_t step, const TiltCommand& queued) { return step < queued.step; });
+      queue_.begin(), queue_.end(), command, [](const TiltCommand& a, const TiltCommand& b) {
+        return a.step < b.step || (a.step == b.step && a.order < b.order);
+      });
   queue_.insert(later, command);
   if (queue_.size() <= kQueueCapacity) return true;
   queue_.pop_back();
@@ -111,8 +112,10 @@ void Session::setParams(const Params& params) {
 }
 
 namespace {
-constexpr std::uint32_t kSnapshotVersion = 1;
-}
+// Version 2: each queued command's order. A version-1 state (recorded before it) is read with
+// order 0 for each, as it was queued then.
+constexpr std::uint32_t kSnapshotVersion = 2;
+}  // namespace
 
 std::vector<std::uint8_t> Session::save() const {
   ByteWriter out;
@@ -124,6 +127,7 @@ std::vector<std::uint8_t> Session::save() const {
     out.put(static_cast<std::int32_t>(c.kind));
     out.put(c.roll);
     out.put(c.pitch);
+    out.put(c.order);
   }
   for (bool flag : {paused_, commanded_, driving_rates_, levelled_, finished_})
     out.put(static_cast<std::uint8_t>(flag));
@@ -134,7 +138,8 @@ std::vector<std::uint8_t> Session::save() const {
 
 void Session::restore(const std::vector<std::uint8_t>& bytes) {
   ByteReader in(bytes);
-  if (in.get<std::uint32_t>() != kSnapshotVersion)
+  const auto version = in.get<std::uint32_t>();
+  if (version != kSnapshotVersion && version != 1)
     throw std::runtime_error("snapshot: not a state of this version");
   Simulation sim = sim_;
   sim.restore(&in);
@@ -147,6 +152,7 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
     c.kind = static_cast<TiltCommand::Kind>(in.get<std::int32_t>());
     c.roll = in.get<double>();
     c.pitch = in.get<double>();
+    if (version >= 2) c.order = in.get<std::uint64_t>();
   }
   bool flags[5];
   for (bool& flag : flags) flag = in.get<std::uint8_t>() != 0;

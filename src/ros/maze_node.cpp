@@ -341,7 +341,10 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
   // so that an agent stepping the simulation drives it step by step.
   const std::uint64_t at =
       clock_.anchored() && !session_->paused() ? clock_.stepAt(stamp, now) : now;
-  if (!session_->command({at, kind, roll, pitch}))
+  // Those that act at one step act in the order of their stamps (a zero stamp: on arrival),
+  // whatever the order they came in.
+  const ros::Time order = stamp.isZero() ? ros::Time::now() : stamp;
+  if (!session_->command({at, kind, roll, pitch, order.toNSec()}))
     MARBLE_MAZE_WARN_WALL_THROTTLE(
         1.0,
         "tilt commands stamped far ahead fill the queue; dropped the one furthest "
@@ -476,6 +479,11 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
     overrides.emplace_back(key, value);
   }
   writeBackSettings();
+  // The latched descriptions say the physics in force: a planner reading `maze` (its tilt limit,
+  // its servo) and a recorder reading `scene` start from the new values. (The scene goes before
+  // the input's snapshot, as at a load.)
+  out_->publishDescription(session_->simulation());
+  log_->scene(*session_, maze_text_, maze_source_);
   marble_maze::SimInput input;
   input.params = mm::paramsText(session_->simulation().params());
   logInput(marble_maze::SimInput::PARAMS, input);

@@ -46,11 +46,8 @@ double readNumber(const ros::NodeHandle& pnh, const std::string& key, double fal
   const std::string text = asText(value, name);
   if (!mm::parseFiniteNumber(text, &number))
     throw std::runtime_error(name + ": " + mm::whyNotANumber(text));
-  if (number < min || number > max) {
-    std::ostringstream msg;
-    msg << name << ": " << number << " is out of range [" << min << ", " << max << "]";
-    throw std::runtime_error(msg.str());
-  }
+  if (number < min || number > max)
+    throw std::runtime_error(mm::outOfRangeText(name, number, min, max));
   return number;
 }
 

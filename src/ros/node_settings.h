@@ -49,6 +49,9 @@ marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& setting
 /// world -> board -> marble: one empty, starting with '/', or named as another.
 void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& settings);
 
+/// The burst of tilt commands a node takes in at once (its subscribers' queues), and so the
+/// states and events it may publish in answer at once (its publishers' queues).
+constexpr std::uint32_t kCommandBurst = 1000;
 /// The most one command (a lockstep tilt, a `step` call) may take on, in steps and in substeps:
 /// more would hold the node up, its services unanswered, for seconds.
 constexpr std::uint32_t kMostStepsPerCommand = 10000000;

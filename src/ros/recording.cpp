@@ -4,6 +4,7 @@
 #include <rosbag/view.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "marble_maze/maze_file.h"
@@ -19,15 +20,17 @@ Recording readRecording(const std::string& path) {
     throw std::runtime_error(path + ": " + e.what());
   }
   Recording r;
-  std::vector<marble_maze::SceneDescription> scenes;  // with the snapshots seen before each
-  std::vector<std::size_t> scene_after;
-  std::vector<marble_maze::SimSnapshot> snapshots;
+  std::vector<marble_maze::SceneDescription> scenes;
+  std::vector<ros::Time> scene_received;
+  std::vector<marble_maze::SimSnapshot> snapshots;  // in the order received
+  std::vector<ros::Time> snapshot_received;
   for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
     if (auto scene = m.instantiate<marble_maze::SceneDescription>()) {
       scenes.push_back(*scene);
-      scene_after.push_back(snapshots.size());
+      scene_received.push_back(m.getTime());
     } else if (auto snapshot = m.instantiate<marble_maze::SimSnapshot>()) {
       snapshots.push_back(*snapshot);
+      snapshot_received.push_back(m.getTime());
     } else if (auto input = m.instantiate<marble_maze::SimInput>()) {
       r.inputs.push_back(*input);
     } else if (auto state = m.instantiate<marble_maze::MarbleState>()) {
@@ -44,11 +47,29 @@ Recording readRecording(const std::string& path) {
     if (r.inputs[k].index != r.inputs[k - 1].index + 1)
       throw std::runtime_error(path + ": inputs " + std::to_string(r.inputs[k - 1].index + 1) +
                                " to " + std::to_string(r.inputs[k].index - 1) + " are missing");
+    // The node starts over where ROS time goes back: the runs' states share stamps, and the
+    // recorder's times loop with them, so that neither tells one run's messages from another's.
+    if (r.inputs[k].header.stamp < r.inputs[k - 1].header.stamp)
+      throw std::runtime_error(
+          path + ": ROS time went back while it was recorded (input " +
+          std::to_string(r.inputs[k].index) + " is stamped " +
+          std::to_string(r.inputs[k].header.stamp.toSec()) + " s, input " +
+          std::to_string(r.inputs[k - 1].index) + " " +
+          std::to_string(r.inputs[k - 1].header.stamp.toSec()) +
+          " s: a looping rosbag play, a clock set back); its runs cannot be told apart, so "
+          "record each in a bag of its own");
   }
+  // Each scene is the maze of the snapshots received after it, and of those received at the same
+  // instant: the node publishes a scene before the snapshot of its instant, but a recorder may
+  // receive two messages of one instant (a lockstep node's latched scene and first snapshot, at
+  // one simulated time) in either order.
+  std::vector<std::size_t> scene_after;  // the snapshots received before each scene
+  for (const ros::Time& t : scene_received)
+    scene_after.push_back(static_cast<std::size_t>(
+        std::lower_bound(snapshot_received.begin(), snapshot_received.end(), t) -
+        snapshot_received.begin()));
   // A recorder that started late missed the inputs made before it subscribed: the replay starts
-  // from the first snapshot that holds them all and has a scene recorded before it. (Two latched
-  // messages of one instant, the scene and the first snapshot of a lockstep node, come in either
-  // order: then the next snapshot is the first.)
+  // from the first snapshot that holds them all and has a scene recorded before it.
   const std::uint64_t first_input = r.inputs.empty() ? 0 : r.inputs.front().index;
   const std::size_t first_scene_before = scenes.empty() ? snapshots.size() : scene_after.front();
   std::size_t chosen = snapshots.size();
@@ -150,10 +171,12 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
     switch (in.kind) {
       case K::TILT:
       case K::TILT_RATE:
+        // As applied in the session, in the order it applied them: after any the snapshot
+        // still held for this step (which the session applied too, and logged among these).
         session_->command(
             {session_->steps(),
              in.kind == K::TILT ? mm::TiltCommand::Kind::Angles : mm::TiltCommand::Kind::Rates,
-             in.roll, in.pitch});
+             in.roll, in.pitch, std::numeric_limits<std::uint64_t>::max()});
         break;
       case K::RESET:
         session_->reset();

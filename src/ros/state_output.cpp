@@ -15,19 +15,24 @@ namespace marble_maze_ros {
 namespace mm = marble_maze;
 
 StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings) : settings_(settings) {
-  // Deep enough that a recorder the machine holds up for a moment (two seconds of states at
-  // 50 Hz) loses none: a publisher drops its oldest message past its queue.
-  state_pub_ = nh.advertise<marble_maze::MarbleState>("marble_state", 100);
+  // A publisher drops its oldest message past its queue: deep enough that a lockstep agent's
+  // burst of commands (tilt's queue) is answered state for state, and that a recorder the
+  // machine holds up for a moment loses none.
+  state_pub_ = nh.advertise<marble_maze::MarbleState>("marble_state", kCommandBurst);
   odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 10);
-  event_pub_ = nh.advertise<marble_maze::MazeEvent>("events", 100);
+  event_pub_ = nh.advertise<marble_maze::MazeEvent>("events", kCommandBurst);
   maze_pub_ = nh.advertise<marble_maze::MazeDescription>("maze", 1, true);
   maze_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("maze_markers", 1, true);
   marble_marker_pub_ = nh.advertise<visualization_msgs::Marker>("marble_marker", 10);
   live_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("live_markers", 1);
 }
 
-void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
+void StateOutput::publishDescription(const mm::Simulation& sim) {
   maze_pub_.publish(describe({sim.maze(), sim.params()}, settings_.board_frame));
+}
+
+void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
+  publishDescription(sim);
   visualization_msgs::MarkerArray markers = mazeMarkers(sim.maze(), settings_.board_frame);
   if (replacing) {  // the old maze's markers of kinds and sizes the new one lacks go
     visualization_msgs::Marker clear;

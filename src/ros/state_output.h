@@ -22,6 +22,9 @@ class StateOutput {
 
   /// The maze for planners and RViz (latched), at the start or, `replacing` another, a load.
   void publishScene(const marble_maze::Simulation& sim, bool replacing);
+  /// The latched description alone (the maze and the physics a controller needs), as it stands
+  /// after its parameters changed.
+  void publishDescription(const marble_maze::Simulation& sim);
   /// The marble's state as a message (stamped).
   marble_maze::MarbleState stateOf(const marble_maze::Simulation& sim,
                                    const ros::Time& stamp) const;

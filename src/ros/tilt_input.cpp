@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "node_settings.h"
 #include "wall_throttle.h"
 
 namespace marble_maze_ros {
@@ -13,8 +14,8 @@ TiltInput::TiltInput(ros::NodeHandle& nh, Handler handler,
   const auto hints = ros::TransportHints().tcpNoDelay();
   // Deep queues: in lockstep each command runs its control period before the next is read, and an
   // agent may send a burst.
-  tilt_sub_ = nh.subscribe("tilt", 1000, &TiltInput::onTilt, this, hints);
-  rate_sub_ = nh.subscribe("tilt_rate", 1000, &TiltInput::onTiltRate, this, hints);
+  tilt_sub_ = nh.subscribe("tilt", kCommandBurst, &TiltInput::onTilt, this, hints);
+  rate_sub_ = nh.subscribe("tilt_rate", kCommandBurst, &TiltInput::onTiltRate, this, hints);
   tilt_topic_ = tilt_sub_.getTopic();
   rate_topic_ = rate_sub_.getTopic();
 }
@@ -32,8 +33,8 @@ void TiltInput::checkNoneLost(const std::string& topic, const std::string& publi
   said_lost_ = now;
   ROS_WARN(
       "%s: %llu commands from %s lost on the way (a gap in their header.seq): a burst larger "
-      "than the publisher's queue or the node's (1000)?",
-      topic.c_str(), static_cast<unsigned long long>(lost_), publisher.c_str());
+      "than the publisher's queue or the node's (%u)?",
+      topic.c_str(), static_cast<unsigned long long>(lost_), publisher.c_str(), kCommandBurst);
   lost_ = 0;
 }
 

@@ -25,6 +25,7 @@ with --gtest_output=xml:FILE it writes JUnit XML for catkin. About 2 minutes.
 """
 import math
 import os
+import re
 import shutil
 import signal
 import socket
@@ -231,6 +232,34 @@ class RecordReplayTest(unittest.TestCase):
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
+        # Received at the very instant of the scene (whichever the bag gives first): the scene is
+        # its maze, and the replay starts from it, as from one received just after the scene.
+        compared = []
+        for name, at in (("tied", scene_at), ("after", scene_at + rospy.Duration(0, 1))):
+            bag = os.path.join(self.dir, "snapshot_%s.bag" % name)
+            with rosbag.Bag(bag, "w") as out:
+                for k, (topic, m, t) in enumerate(messages):
+                    out.write(topic, m, at if k == first else t)
+            run = subprocess.run([simulate, "--bag", bag, "--check"], capture_output=True,
+                                 text=True, timeout=120)
+            self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+            compared.append(re.search(r"(\d+) recorded states compared: all identical",
+                                      run.stdout).group(1))
+        self.assertEqual(compared[0], compared[1])
+        # ROS time gone back in the session (a looping rosbag play): its runs share stamps, and
+        # a replay cannot tell them apart: refused, saying so, rather than compared wrongly.
+        looped = os.path.join(self.dir, "looped.bag")
+        middle = sorted(m.index for _, m, _ in messages
+                        if m._type == "marble_maze/SimInput")[len(inputs(self.session)) // 2]
+        with rosbag.Bag(looped, "w") as out:
+            for topic, m, t in messages:
+                if m._type == "marble_maze/SimInput" and m.index >= middle:
+                    m.header.stamp -= rospy.Duration(5)
+                out.write(topic, m, t)
+        run = subprocess.run([simulate, "--bag", looped, "--check"], capture_output=True,
+                             text=True, timeout=120)
+        self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
+        self.assertIn("ROS time went back while it was recorded (input %d" % middle, run.stderr)
 
     def test_7_the_node_leaves_its_parameters_as_they_were_given(self):
         # The values it wrote back while running (every key in force) go when it stops, so that
@@ -416,6 +445,47 @@ class RecordReplayTest(unittest.TestCase):
         self.assertNotIn("lost on the way", after_two)
         self.assertIn("30 commands from /play_", said[len(after_two):])
         self.assertEqual(said.count("lost on the way"), 1, said[-2000:])
+
+    def test_9_a_lockstep_burst_is_answered_and_recorded_whole(self):
+        # An agent's burst of 1000 tilts into a lockstep node: each is answered by a state (its
+        # publishers are as deep as its subscribers), and record.launch keeps every input (rosbag
+        # record's queues of 100 lost some 50 of them), so that the bag replays bit for bit.
+        bag = os.path.join(self.dir, "burst.bag")
+        # (Wall-time sleeps: a lockstep node's clock stands still between commands.)
+        agent = ("import math, time, rospy\n"
+                 "from marble_maze.msg import BoardTilt\n"
+                 "rospy.init_node('burst')\n"
+                 "pub = rospy.Publisher('tilt', BoardTilt, queue_size=1000)\n"
+                 "while pub.get_num_connections() < 2: time.sleep(0.05)\n"
+                 "time.sleep(1.0)\n"
+                 "for i in range(1000):\n"
+                 "    pub.publish(BoardTilt(roll=0.05 * math.sin(0.01 * i), pitch=0.0))\n"
+                 "time.sleep(5.0)\n")
+        simulate = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
+        master = Master()
+        try:
+            node = master.start(["roslaunch", "marble_maze", "sim.launch", "lockstep:=0.02"])
+            time.sleep(3)
+            record = master.start(["roslaunch", "marble_maze", "record.launch", "node:=false",
+                                   "bag:=" + bag])
+            time.sleep(3)
+            master.start(["/usr/bin/python3", "-c", agent]).wait(timeout=120)
+            master.stop(record)
+            master.stop(node)
+        finally:
+            master.close()
+        recorded = inputs(bag)  # (from the first made after the recorder subscribed)
+        first = recorded[0].index
+        self.assertEqual([m.index for m in recorded], list(range(first, first + len(recorded))))
+        tilts = [m for m in recorded if m.kind == m.TILT]
+        self.assertEqual(len(tilts), 1000)
+        seqs = [m.header.seq for m in states(bag)]
+        self.assertGreaterEqual(len(seqs), 1000)
+        self.assertEqual(seqs, list(range(seqs[0], seqs[0] + len(seqs))))
+        run = subprocess.run([simulate, "--bag", bag, "--check"], capture_output=True, text=True,
+                             timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        self.assertIn("all identical", run.stdout)
 
     def test_5_the_bag_lost_nothing(self):
         # roscpp numbers each publisher's messages (header.seq): the recorded states and events

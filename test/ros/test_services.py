@@ -34,7 +34,7 @@ from geometry_msgs.msg import Point, Vector3
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Trigger
 
-from marble_maze.msg import BoardTilt, MarbleState, MazeDescription, MazeEvent
+from marble_maze.msg import BoardTilt, MarbleState, MazeDescription, MazeEvent, SceneDescription
 from marble_maze.srv import LoadMaze, PlaceMarble, Step
 
 NODE = "/marble_maze"
@@ -197,8 +197,15 @@ class ServicesTest(unittest.TestCase):
     def test_5_reconfigure_restitution_acts_on_the_next_bounce(self):
         client = Client(NODE, timeout=20)
         self.assertEqual(rospy.get_param(NODE + "/restitution"), 0.5)  # written back at start
-        client.update_configuration({"restitution": 0.9})
+        client.update_configuration({"restitution": 0.9, "tilt_limit": 0.15})
         self.assertEqual(rospy.get_param(NODE + "/restitution"), 0.9)
+        # The latched descriptions follow: a planner reading `maze` and a recorder reading `scene`
+        # see the physics in force.
+        maze = rospy.wait_for_message("/maze", MazeDescription, timeout=10)
+        self.assertEqual((maze.restitution, maze.tilt_limit), (0.9, 0.15))
+        scene = rospy.wait_for_message("/scene", SceneDescription, timeout=10)
+        self.assertIn("restitution=0.9\n", scene.params)
+        self.assertIn("tilt_limit=0.15\n", scene.params)
         refused = client.update_configuration({"restitution": 1.5})  # beyond [0, 1]
         self.assertEqual(refused["restitution"], 0.9)
         start = len(self.events.all)
@@ -214,7 +221,7 @@ class ServicesTest(unittest.TestCase):
         loaded = call("load_maze", LoadMaze, rospy.get_param("~maze"))
         self.assertTrue(loaded.success, loaded.message)
         self.assertEqual(rospy.get_param(NODE + "/restitution"), 0.9)
-        client.update_configuration({"restitution": 0.5})
+        client.update_configuration({"restitution": 0.5, "tilt_limit": 0.17453292519943295})
 
     def test_6_diagnostics_and_odometry(self):
         status = self.diagnostics.wait(

@@ -49,8 +49,7 @@ TEST(Params, BadValuesNameTheKeyAndWhatWasExpected) {
   EXPECT_EQ(errorOf("restitution", "x"), "restitution: expected a number, got 'x'");
   EXPECT_EQ(errorOf("restitution", "1.5"), "restitution: 1.5 is out of range [0, 1]");
   // Just beyond a bound, the value is said exactly, not rounded onto the bound.
-  EXPECT_EQ(errorOf("restitution", "1.0000001"),
-            "restitution: 1.0000001 is out of range [0, 1]");
+  EXPECT_EQ(errorOf("restitution", "1.0000001"), "restitution: 1.0000001 is out of range [0, 1]");
   EXPECT_EQ(errorOf("restitution", "nan"), "restitution: expected a finite number, got 'nan'");
   EXPECT_EQ(errorOf("model", "bouncy"),
             "model: expected one of 'smooth' or 'rolling', got 'bouncy'");

@@ -70,7 +70,9 @@ class Simulation {
   void restore(const SimulationState& state);
   /// The state as bytes, bit for bit (the scene, maze and physics, is not in them).
   void save(ByteWriter* out) const;
-  void restore(ByteReader* in);
+  /// `with_origin`: the state was saved with the time and steps its time counts from (a session
+  /// snapshot of version 2 on).
+  void restore(ByteReader* in, bool with_origin = true);
   /// Why the marble cannot be placed at a board-frame position (inside a tile, off the board),
   /// or "" when it can.
   std::string whyNotPlaceable(const Vec3& position_in_board) const;
@@ -91,7 +93,10 @@ class Simulation {
   const Params& params() const { return params_; }
   const Board& board() const { return board_; }
   const Marble& marble() const { return marble_; }
-  double time() const { return time_; }  ///< s: the sum of the steps taken
+  /// s: the steps taken, each as long as it was: the time at the last change of parameters (or
+  /// load) plus the steps since times the step, not a sum, which drifts by its roundings (1e-13 s
+  /// over 10 s of 1 ms steps)
+  double time() const { return time_; }
   std::uint64_t steps() const { return steps_; }
   /// The events of the last step, in order.
   const std::vector<Event>& events() const { return events_; }
@@ -160,6 +165,10 @@ class Simulation {
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame
   double time_ = 0;
+  // The time and the steps when the step length last changed (or the state was restored): the
+  // time now is the time then plus the steps since times the step.
+  double time_origin_ = 0;
+  std::uint64_t steps_origin_ = 0;
   double board_work_ = 0;
   std::uint64_t steps_ = 0;
   StepCounts counts_;

@@ -112,8 +112,9 @@ void Session::setParams(const Params& params) {
 }
 
 namespace {
-// Version 2: each queued command's order. A version-1 state (recorded before it) is read with
-// order 0 for each, as it was queued then.
+// Version 2: each queued command's order, and the time and steps the simulated time counts from.
+// A version-1 state (recorded before them) is read with order 0 for each command, as it was
+// queued then, and its time counted from where it was saved.
 constexpr std::uint32_t kSnapshotVersion = 2;
 }  // namespace
 
@@ -142,7 +143,7 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
   if (version != kSnapshotVersion && version != 1)
     throw std::runtime_error("snapshot: not a state of this version");
   Simulation sim = sim_;
-  sim.restore(&in);
+  sim.restore(&in, version >= 2);
   const auto queued = in.get<std::uint64_t>();
   if (queued > kQueueCapacity)
     throw std::runtime_error("snapshot: more commands than a queue holds");

@@ -77,6 +77,8 @@ void Simulation::setParams(const Params& params) {
   inertia_ = params_.marbleInertia();
   frame_ = gridFrame();
   substep_ = params_.step / params_.substeps;
+  time_origin_ = time_;  // steps of another length count from here
+  steps_origin_ = steps_;
 }
 
 SimulationState Simulation::state() const {
@@ -88,8 +90,8 @@ void Simulation::restore(const SimulationState& state) {
   board_ = state.board;
   board_.setLimits(params_);
   held_in_grid_ = state.held_in_grid;
-  time_ = state.time;
-  steps_ = state.steps;
+  time_ = time_origin_ = state.time;
+  steps_ = steps_origin_ = state.steps;
   frame_ = gridFrame();
   board_work_ = 0;
   events_.clear();
@@ -108,9 +110,11 @@ void Simulation::save(ByteWriter* out) const {
   out->put(held_in_grid_);
   out->put(time_);
   out->put(steps_);
+  out->put(time_origin_);
+  out->put(steps_origin_);
 }
 
-void Simulation::restore(ByteReader* in) {
+void Simulation::restore(ByteReader* in, bool with_origin) {
   Marble m;
   m.position = in->vec3();
   m.velocity = in->vec3();
@@ -125,11 +129,16 @@ void Simulation::restore(ByteReader* in) {
   const Vec3 held = in->vec3();
   const double time = in->get<double>();
   const auto steps = in->get<std::uint64_t>();
+  // (A state saved without its origin counts its steps from where it was saved.)
+  const double time_origin = with_origin ? in->get<double>() : time;
+  const auto steps_origin = with_origin ? in->get<std::uint64_t>() : steps;
   marble_ = m;
   board_ = board;
   held_in_grid_ = held;
   time_ = time;
   steps_ = steps;
+  time_origin_ = time_origin;
+  steps_origin_ = steps_origin;
   frame_ = gridFrame();
   board_work_ = 0;
   events_.clear();
@@ -242,8 +251,8 @@ void Simulation::step() {
   const double h = params_.step / substeps;
   substep_ = h;
   for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
-  time_ += params_.step;
   ++steps_;
+  time_ = time_origin_ + static_cast<double>(steps_ - steps_origin_) * params_.step;
 }
 
 void Simulation::substep(double h, double start_time) {

@@ -82,7 +82,7 @@ void TiltInput::pass(const std::string& topic, const std_msgs::Header& header,
   if (held > kHeldWarning)
     MARBLE_MAZE_WARN_WALL_THROTTLE(
         1.0,
-        "%s: command stamped %.9g s is held %.6g s, until the simulation's clock "
+        "%s: command stamped %.9f s is held %.6g s, until the simulation's clock "
         "reaches its stamp (stamp commands with ros::Time::now(), which follows "
         "/clock under /use_sim_time, or leave the stamp zero to act at once)",
         topic.c_str(), header.stamp.toSec(), held);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -52,6 +53,19 @@ TEST(SimulateCli, ATiltMovesTheMarbleAndTheSummarySaysWhatHappened) {
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("maze classic"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("ran 1000 steps"), std::string::npos) << r.output;
+}
+
+TEST(SimulateCli, ADurationThatIsNoWholeNumberOfStepsSaysWhatRuns) {
+  const std::string out = tempPath("short.csv");
+  const Result r = runSimulate("--set step=0.1 --duration 0.05 --quiet --out " + out);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("--duration 0.05 s is not a whole number of steps of 0.1 s; runs 1 "
+                          "step (0.1 s)"),
+            std::string::npos)
+      << r.output;
+  const std::string rows = readFile(out);  // the header, the start and the one step
+  EXPECT_EQ(std::count(rows.begin(), rows.end(), '\n'), 3) << rows;
+  EXPECT_EQ(runSimulate("--duration 2 --quiet").output, "");  // a whole number: nothing said
 }
 
 TEST(SimulateCli, ATiltBeyondTheLimitIsClampedLikeAnyTilt) {

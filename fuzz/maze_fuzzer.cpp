@@ -1,6 +1,8 @@
 // Fuzzes the maze-file parser with whatever text libFuzzer makes of its corpus (fuzz/corpus/maze
 // and mazes/: shipped mazes and broken ones). A text is either refused with a MazeFileError that
-// names the file, or it is a maze a simulation runs on: 20 steps under a tilt, the marble finite.
+// names the file (by the parser, or by the simulation for a start_position the file sets where
+// the marble cannot be), refused with a ParamError (a marble wider than its start cell), or it
+// is a maze a simulation runs on: 20 steps under a tilt, the marble finite.
 // Anything else (another exception, a crash, undefined behaviour, a hang) is a finding.
 #include <cstddef>
 #include <cstdint>
@@ -41,6 +43,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       sim.step();
     }
     check(sim.marble().position.allFinite() && sim.marble().velocity.allFinite());
+  } catch (const mm::MazeFileError& e) {
+    // A start_position the file sets where the marble cannot be: refused at its place in the file.
+    check(std::string(e.what()).rfind("fuzz.yaml:", 0) == 0);
   } catch (const mm::ParamError& e) {
     check(e.what()[0] != '\0');  // a marble that cannot start in this maze: refused, named
   }

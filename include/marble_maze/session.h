@@ -37,7 +37,8 @@ struct TiltCommand {
 
 class Session {
  public:
-  /// Throws ParamError when the scene's parameters are inconsistent.
+  /// Throws ParamError when the scene's parameters are inconsistent, and MazeFileError when the
+  /// marble cannot start where the scene's file puts it.
   explicit Session(const Scene& scene, const SessionSettings& settings = SessionSettings());
 
   /// Queues a command in the order of its step and then of its `order` (equal ones keep their
@@ -53,7 +54,8 @@ class Session {
   /// Puts the marble at a board-frame position with a world-frame velocity and spin; throws
   /// std::invalid_argument naming the problem (inside a tile, off the board), changing nothing.
   void place(const Vec3& position_in_board, const Vec3& velocity, const Vec3& spin);
-  /// Another maze and its physics; throws (ParamError) changing nothing when they are bad.
+  /// Another maze and its physics; throws (ParamError, or MazeFileError for a start its file
+  /// gives where the marble cannot be) changing nothing when they are bad.
   void load(const Scene& scene);
   /// Other physics from the next step; throws ParamError changing nothing when inconsistent.
   void setParams(const Params& params);

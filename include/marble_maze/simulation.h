@@ -141,8 +141,7 @@ class Simulation {
   void substep(double h, double start_time);
   void pushOut();
   /// The substep after its start's impacts; `forces_pose`, when not the start's, is the board's
-  /// pose the contacts push in until the first impact. Returns where the marble ends in the grid
-  /// frame, as the sweep put it (its world position is that taken into the world).
+  /// pose the contacts push in until the first impact.
   void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin,
                const Mat3* forces_pose);
   /// The contacts that act over a stretch (acting_): all but those the marble is leaving. With a

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "marble_maze/rotation.h"
 
@@ -132,6 +133,8 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
   // (A state saved without its origin counts its steps from where it was saved.)
   const double time_origin = with_origin ? in->get<double>() : time;
   const auto steps_origin = with_origin ? in->get<std::uint64_t>() : steps;
+  if (steps_origin > steps || !std::isfinite(time_origin))
+    throw std::runtime_error("snapshot: its time counts from a step it has not reached");
   marble_ = m;
   board_ = board;
   held_in_grid_ = held;

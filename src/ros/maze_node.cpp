@@ -341,9 +341,10 @@ double MazeNode::onCommand(const ros::Time& stamp, mm::TiltCommand::Kind kind, d
   // so that an agent stepping the simulation drives it step by step.
   const std::uint64_t at =
       clock_.anchored() && !session_->paused() ? clock_.stepAt(stamp, now) : now;
-  // Those that act at one step act in the order of their stamps (a zero stamp: on arrival),
-  // whatever the order they came in.
-  const ros::Time order = stamp.isZero() ? ros::Time::now() : stamp;
+  // Those that act at one step act in the order of their stamps (a zero stamp: on arrival, at
+  // the simulation's time if steps taken while paused put it ahead of ROS time), whatever the
+  // order they came in.
+  const ros::Time order = stamp.isZero() ? std::max(ros::Time::now(), stampNow()) : stamp;
   if (!session_->command({at, kind, roll, pitch, order.toNSec()}))
     MARBLE_MAZE_WARN_WALL_THROTTLE(
         1.0,

@@ -22,8 +22,10 @@
 namespace marble_maze_ros {
 
 struct Recording {
-  marble_maze::SceneDescription scene;           ///< the last before the first snapshot
-  marble_maze::SimSnapshot snapshot;             ///< the first in the bag
+  /// The last received before the snapshot, or at its instant.
+  marble_maze::SceneDescription scene;
+  /// The first that a scene was received before (or with) and the recorded inputs follow on from.
+  marble_maze::SimSnapshot snapshot;
   std::vector<marble_maze::SimInput> inputs;     ///< those after the snapshot, in order
   std::vector<marble_maze::MarbleState> states;  ///< marble_state as recorded, in stamp order
 };

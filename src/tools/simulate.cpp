@@ -199,10 +199,12 @@ int run(const Options& o) {
   // Whole steps: the duration's nearest, said when it is not one (a duration under half a step
   // would run none).
   const double step = scene.params.step;
-  const auto steps = std::max<std::uint64_t>(1, std::llround(o.duration / step));
+  const auto steps = o.duration > 0 ? std::max<std::uint64_t>(1, std::llround(o.duration / step))
+                                    : std::uint64_t{0};
   if (std::abs(static_cast<double>(steps) * step - o.duration) > 1e-9 * std::max(o.duration, step))
-    std::cerr << "simulate: --duration " << o.duration << " s is not a whole number of steps of "
-              << step << " s; runs " << steps << (steps == 1 ? " step" : " steps") << " ("
+    std::cerr << "simulate: --duration " << mm::exactText(o.duration)
+              << " s is not a whole number of steps of " << mm::exactText(step) << " s; runs "
+              << steps << (steps == 1 ? " step" : " steps") << " ("
               << mm::exactText(static_cast<double>(steps) * step) << " s)\n";
   std::vector<mm::Event> all_events;
   for (std::uint64_t n = 1; n <= steps; ++n) {

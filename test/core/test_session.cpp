@@ -58,19 +58,27 @@ TEST(Session, CommandsOfOneStepActInTheirOrderWhateverTheirArrival) {
   EXPECT_DOUBLE_EQ(b.simulation().board().roll(), 0.04);
   EXPECT_EQ(b.save(), a.save());
   // A state of version 1 (recorded before commands had an order and the time an origin) still
-  // restores. With nothing queued its bytes are version 2's less the origin (the 16 bytes before
-  // the queue's length, the flags and the two step counts, 29), and its version.
+  // restores, and goes on as the session it was saved from. With one command queued its bytes
+  // are version 2's less the origin (16 bytes before the queue's length), less the command's
+  // order (its last 8 of 36), and its version; the flags and two step counts (21) end both.
   a.run(100);
-  ASSERT_EQ(a.queued(), 0u);
+  a.command({300, TiltCommand::Kind::Angles, 0.07, -0.03, 5});
   const std::vector<std::uint8_t> now = a.save();
-  std::vector<std::uint8_t> old(now.begin(), now.end() - 29 - 16);
-  old.insert(old.end(), now.end() - 29, now.end());
+  const std::size_t tail = 21, command = 36, count = 8, origin = 16;
+  const auto at = [&](std::size_t from_end) { return now.end() - from_end; };
+  std::vector<std::uint8_t> old(now.begin(), at(tail + command + count + origin));
+  old.insert(old.end(), at(tail + command + count), at(tail + 8));
+  old.insert(old.end(), at(tail), now.end());
   old[0] = 1;
   Session c(room());
   c.restore(old);
   EXPECT_EQ(c.steps(), a.steps());
-  EXPECT_EQ(c.simulation().time(), a.simulation().time());
+  EXPECT_EQ(c.queued(), 1u);
+  a.run(400);
+  c.run(400);
   EXPECT_EQ(c.simulation().marble().position, a.simulation().marble().position);
+  EXPECT_DOUBLE_EQ(c.simulation().board().roll(), 0.07);
+  EXPECT_NEAR(c.simulation().time(), a.simulation().time(), 1e-12);
   old.pop_back();
   EXPECT_THROW(c.restore(old), std::runtime_error);
 }

@@ -113,6 +113,7 @@ void Simulation::save(ByteWriter* out) const {
   out->put(steps_);
   out->put(time_origin_);
   out->put(steps_origin_);
+  out->put(params_.step);  // the step the origin's count is of
 }
 
 void Simulation::restore(ByteReader* in, bool with_origin) {
@@ -130,11 +131,22 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
   const Vec3 held = in->vec3();
   const double time = in->get<double>();
   const auto steps = in->get<std::uint64_t>();
-  // (A state saved without its origin counts its steps from where it was saved.)
-  const double time_origin = with_origin ? in->get<double>() : time;
-  const auto steps_origin = with_origin ? in->get<std::uint64_t>() : steps;
-  if (steps_origin > steps || !std::isfinite(time_origin))
-    throw std::runtime_error("snapshot: its time counts from a step it has not reached");
+  // A state restored under the step it was saved with counts on from its origin, as the session
+  // it was saved from does; under another step (a replay with other physics), or saved without
+  // its origin, it counts its steps from where it was saved.
+  double time_origin = time;
+  std::uint64_t steps_origin = steps;
+  if (with_origin) {
+    const double saved_time_origin = in->get<double>();
+    const auto saved_steps_origin = in->get<std::uint64_t>();
+    const double saved_step = in->get<double>();
+    if (saved_steps_origin > steps || !std::isfinite(saved_time_origin))
+      throw std::runtime_error("snapshot: its time counts from a step it has not reached");
+    if (saved_step == params_.step) {
+      time_origin = saved_time_origin;
+      steps_origin = saved_steps_origin;
+    }
+  }
   marble_ = m;
   board_ = board;
   held_in_grid_ = held;

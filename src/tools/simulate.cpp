@@ -208,7 +208,7 @@ int run(const Options& o) {
               << mm::exactText(static_cast<double>(steps) * step) << " s)\n";
   std::vector<mm::Event> all_events;
   for (std::uint64_t n = 1; n <= steps; ++n) {
-    const mm::TiltSchedule::Point tilt = o.tilt.at(static_cast<double>(n) * scene.params.step);
+    const mm::TiltSchedule::Point tilt = o.tilt.at(static_cast<double>(n) * step);
     sim->setTargetTilt(tilt.roll, tilt.pitch);
     sim->step();
     all_events.insert(all_events.end(), sim->events().begin(), sim->events().end());

@@ -42,6 +42,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # Where the recorded session's board is in the world, m: the states published are there.
 BOARD = (0.3, -0.2, 0.75)
 WS = os.environ.get("MARBLE_MAZE_WS", os.path.join(HERE, "..", "..", "..", "main.ws"))
+SIMULATE = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
 
 
 def free_port():
@@ -137,8 +138,7 @@ class RecordReplayTest(unittest.TestCase):
         recorded_states = states(self.session)
         first = recorded_states[0].position
         self.assertLess(math.dist((first.x, first.y, first.z), BOARD), 0.2)
-        simulate = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
-        run = subprocess.run([simulate, "--bag", self.session, "--check"], capture_output=True,
+        run = subprocess.run([SIMULATE, "--bag", self.session, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
@@ -146,7 +146,7 @@ class RecordReplayTest(unittest.TestCase):
         self.assertGreater(compared, 400)
         # Its events, from the snapshot it starts at (the first that holds every recorded input)
         # to the last state or input recorded, are the recorded ones, each number exact.
-        run = subprocess.run([simulate, "--bag", self.session, "--events", "-", "--quiet"],
+        run = subprocess.run([SIMULATE, "--bag", self.session, "--events", "-", "--quiet"],
                              capture_output=True, text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stderr)
         rows = run.stdout.splitlines()
@@ -168,13 +168,12 @@ class RecordReplayTest(unittest.TestCase):
         self.assertEqual(recorded[len(recorded) - len(kept):], kept)
 
     def test_6_another_step_keeps_the_recorded_times_and_a_bag_lacking_a_topic_is_refused(self):
-        simulate = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
 
         def board(*flags):
             """(t, roll, pitch) of each row of a re-simulation, and when its marble first
             finished (the session then levels the board whatever the inputs say)."""
             events = os.path.join(self.dir, "events.csv")
-            run = subprocess.run([simulate, "--bag", self.session, "--out", "-", "--quiet",
+            run = subprocess.run([SIMULATE, "--bag", self.session, "--out", "-", "--quiet",
                                   "--events", events] + list(flags),
                                  capture_output=True, text=True, timeout=120)
             self.assertEqual(run.returncode, 0, run.stderr)
@@ -209,11 +208,11 @@ class RecordReplayTest(unittest.TestCase):
                     a.write(topic, m, t)
                 if m._type != "marble_maze/SimInput":
                     b.write(topic, m, t)
-        run = subprocess.run([simulate, "--bag", no_states, "--check"], capture_output=True,
+        run = subprocess.run([SIMULATE, "--bag", no_states, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
         self.assertIn("holds no marble_state", run.stderr)
-        run = subprocess.run([simulate, "--bag", no_inputs], capture_output=True, text=True,
+        run = subprocess.run([SIMULATE, "--bag", no_inputs], capture_output=True, text=True,
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("no marble_maze/SimInput (inputs)", run.stderr)
@@ -228,7 +227,7 @@ class RecordReplayTest(unittest.TestCase):
         with rosbag.Bag(swapped, "w") as out:
             for k, (topic, m, t) in enumerate(messages):
                 out.write(topic, m, scene_at - rospy.Duration(0, 1) if k == first else t)
-        run = subprocess.run([simulate, "--bag", swapped, "--check"], capture_output=True,
+        run = subprocess.run([SIMULATE, "--bag", swapped, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
@@ -240,7 +239,7 @@ class RecordReplayTest(unittest.TestCase):
             with rosbag.Bag(bag, "w") as out:
                 for k, (topic, m, t) in enumerate(messages):
                     out.write(topic, m, at if k == first else t)
-            run = subprocess.run([simulate, "--bag", bag, "--check"], capture_output=True,
+            run = subprocess.run([SIMULATE, "--bag", bag, "--check"], capture_output=True,
                                  text=True, timeout=120)
             self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
             compared.append(re.search(r"(\d+) recorded states compared: all identical",
@@ -249,14 +248,14 @@ class RecordReplayTest(unittest.TestCase):
         # ROS time gone back in the session (a looping rosbag play): its runs share stamps, and
         # a replay cannot tell them apart: refused, saying so, rather than compared wrongly.
         looped = os.path.join(self.dir, "looped.bag")
-        middle = sorted(m.index for _, m, _ in messages
-                        if m._type == "marble_maze/SimInput")[len(inputs(self.session)) // 2]
+        indices = sorted(m.index for _, m, _ in messages if m._type == "marble_maze/SimInput")
+        middle = indices[len(indices) // 2]
         with rosbag.Bag(looped, "w") as out:
             for topic, m, t in messages:
                 if m._type == "marble_maze/SimInput" and m.index >= middle:
                     m.header.stamp -= rospy.Duration(5)
                 out.write(topic, m, t)
-        run = subprocess.run([simulate, "--bag", looped, "--check"], capture_output=True,
+        run = subprocess.run([SIMULATE, "--bag", looped, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("ROS time went back while it was recorded (input %d" % middle, run.stderr)
@@ -461,7 +460,6 @@ class RecordReplayTest(unittest.TestCase):
                  "for i in range(1000):\n"
                  "    pub.publish(BoardTilt(roll=0.05 * math.sin(0.01 * i), pitch=0.0))\n"
                  "time.sleep(5.0)\n")
-        simulate = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
         master = Master()
         try:
             node = master.start(["roslaunch", "marble_maze", "sim.launch", "lockstep:=0.02"])
@@ -482,7 +480,7 @@ class RecordReplayTest(unittest.TestCase):
         seqs = [m.header.seq for m in states(bag)]
         self.assertGreaterEqual(len(seqs), 1000)
         self.assertEqual(seqs, list(range(seqs[0], seqs[0] + len(seqs))))
-        run = subprocess.run([simulate, "--bag", bag, "--check"], capture_output=True, text=True,
+        run = subprocess.run([SIMULATE, "--bag", bag, "--check"], capture_output=True, text=True,
                              timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)

@@ -1,4 +1,5 @@
-"""Counts the test cases in JUnit XML result files and prints "N passed, N failed".
+"""Counts the test cases in JUnit XML result files and prints "N passed, N failed", after the
+name and the last lines of the text of each case that failed.
 
 Exits 1 when any case failed, when a test left no result (catkin writes a MISSING-*.xml then),
 or when no case ran at all. Usage: count_results.py DIR [--also-failed WHAT]...
@@ -6,6 +7,15 @@ or when no case ran at all. Usage: count_results.py DIR [--also-failed WHAT]...
 import pathlib
 import sys
 import xml.etree.ElementTree as ET
+
+WHY_LINES = 4  # of each failure's text, printed under its name
+
+
+def why(problem):
+    """The last lines of a failure's text (an assertion's message ends a traceback), indented."""
+    text = (problem.text or "").strip() or problem.get("message", "")
+    lines = [line for line in text.splitlines() if line.strip()][-WHY_LINES:]
+    return "".join("\n    " + line[:300] for line in lines)
 
 
 def count(directory):
@@ -27,9 +37,12 @@ def count(directory):
         # rosunit-*.xml files: it adds only its failures (a test node that crashed or timed out).
         wrapper = path.name.startswith("rostest-")
         for case in cases:
-            if case.find("failure") is not None or case.find("error") is not None:
+            problem = case.find("failure")
+            if problem is None:
+                problem = case.find("error")
+            if problem is not None:
                 failed += 1
-                names.append(f"{case.get('classname')}.{case.get('name')}")
+                names.append(f"{case.get('classname')}.{case.get('name')}{why(problem)}")
             elif case.find("skipped") is None and not wrapper:
                 passed += 1
     return passed, failed, names

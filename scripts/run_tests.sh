@@ -6,8 +6,15 @@ export PATH="/usr/bin:$PATH"
 . "$(dirname "$0")/workspace.sh"
 results=$WS/build/test_results
 rm -rf "$results"
+# The sanitized and the fuzzing builds meanwhile, at the lowest priority: the ROS tests mostly wait
+# on time, and a compiler niced to 19 takes only what they leave (the runs below build nothing
+# more, or build again and tell what failed).
+(nice -n 19 bash "$repo/scripts/sanitize.sh" --build-only
+ nice -n 19 bash "$repo/scripts/fuzz.sh" --build-only) > /dev/null 2>&1 &
+prebuild=$!
 (cd "$WS" && catkin_make run_tests -j2) > "$WS/run_tests.log" 2>&1
 status=$?
+wait $prebuild
 extra=()
 if [ $status -ne 0 ]; then
   tail -n 40 "$WS/run_tests.log"

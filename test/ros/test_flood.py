@@ -3,7 +3,8 @@
 commands at 10 kHz for 10 s, each stamped now and numbered in its roll. Checks that
   - marble_state keeps coming at 50 Hz of ROS time (+-15 %): rostest's own hztest, run during the
     flood (rostest runs a launch file's tests one after another, so the test starts it), and a
-    count here; its stamps stay within 0.1 s of ROS time: the node keeps its step rate;
+    count here; in each second of it, some state arrives within 0.1 s of its stamp: the node keeps its step
+    rate (the least lag of a second, as this process's own delays only add to it);
   - the node's resident memory (VmRSS) during and after the flood stays within 30 MB of what it
     was before: the queues are bounded (a tilt subscription of 100, a command queue of 10,000);
   - the commands it applies (the TILT inputs it publishes on `inputs`, numbered by the flood)
@@ -93,19 +94,29 @@ class FloodTest(unittest.TestCase):
         with lock:
             flood_states = [s for s in states if begin + 1 <= s[0] <= end - 1]
             heard = list(inputs)
-        print("flood: %d commands sent; %d applied inputs heard; RSS before %d kB, most during "
-              "%d kB, after %d kB; %d states in %.1f s"
-              % (sent, len(heard), before, max(during), after, len(flood_states), end - begin - 2))
+        summary = ("flood: %d commands sent; %d applied inputs heard; RSS before %d kB, most during "
+                   "%d kB, after %d kB; %d states in %.1f s"
+                   % (sent, len(heard), before, max(during), after, len(flood_states),
+                      end - begin - 2))
+        print(summary)
 
-        self.assertGreaterEqual(sent, 90000)
+        self.assertGreaterEqual(sent, 90000, summary)
         self.assertEqual(hztest.returncode, 0, "hztest during the flood:\n" + hz_output)
         rate = len(flood_states) / (end - begin - 2)
-        self.assertAlmostEqual(rate, 50.0, delta=7.5)
-        lags = [received - stamp for stamp, received in flood_states]
-        self.assertLess(max(lags), 0.1, "marble_state fell behind ROS time")
-        self.assertLess(max(during) - before, RSS_BOUND_KB)
-        self.assertLess(after - before, RSS_BOUND_KB)
-        self.assertGreaterEqual(len(heard), sent // 2)
+        self.assertAlmostEqual(rate, 50.0, delta=7.5, msg=summary)
+        # How far the node's states lag ROS time, second by second: the least lag of each second,
+        # since the delays of this test's own process (busy hearing 10 kHz of inputs) only add to
+        # it. A node that fell behind its step rate would lag more and more.
+        lags = {}
+        for stamp, received in flood_states:
+            second = int(stamp - begin)
+            lags[second] = min(lags.get(second, 1e9), received - stamp)
+        self.assertLess(max(lags.values()), 0.1,
+                        "marble_state fell behind ROS time: the least lag of each second %s"
+                        % ["%.3f" % lags[k] for k in sorted(lags)])
+        self.assertLess(max(during) - before, RSS_BOUND_KB, summary)
+        self.assertLess(after - before, RSS_BOUND_KB, summary)
+        self.assertGreaterEqual(len(heard), sent // 2, summary)
         for (roll_a, step_a), (roll_b, step_b) in zip(heard, heard[1:]):
             self.assertGreater(roll_b, roll_a, "a command applied out of stamp order")
             self.assertGreaterEqual(step_b, step_a)

@@ -391,8 +391,10 @@ class RecordReplayTest(unittest.TestCase):
             listener = master.start([sys.executable, os.path.join(HERE, "tf_listener.py")],
                                     log=listener_log)
             time.sleep(3)
-            player = master.start(["rosbag", "play", "--clock", "-l", plain, "--topics", "tilt"])
-            time.sleep(45)
+            # At twice the speed: the bag (some 20 s) starts over twice in 22 s.
+            player = master.start(["rosbag", "play", "--clock", "-l", "-r", "2", plain,
+                                   "--topics", "tilt"])
+            time.sleep(22)
             master.stop(player)
             master.stop(listener)
             master.stop(node)

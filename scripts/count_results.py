@@ -1,5 +1,5 @@
 """Counts the test cases in JUnit XML result files and prints "N passed, N failed", after the
-name and the last lines of the text of each case that failed.
+name and the first and last lines of the text of each case that failed.
 
 Exits 1 when any case failed, when a test left no result (catkin writes a MISSING-*.xml then),
 or when no case ran at all. Usage: count_results.py DIR [--also-failed WHAT]...
@@ -8,13 +8,16 @@ import pathlib
 import sys
 import xml.etree.ElementTree as ET
 
-WHY_LINES = 4  # of each failure's text, printed under its name
+WHY_LINES = 4  # of each failure's text, printed under its name (and its last line)
 
 
 def why(problem):
-    """The last lines of a failure's text (an assertion's message ends a traceback), indented."""
+    """The first lines of a failure's text and its last (rosunit puts an assertion's message
+    before its traceback, gtest and unittest's own runner after), indented."""
     text = (problem.text or "").strip() or problem.get("message", "")
-    lines = [line for line in text.splitlines() if line.strip()][-WHY_LINES:]
+    lines = [line for line in text.splitlines() if line.strip()]
+    if len(lines) > WHY_LINES:
+        lines = lines[:WHY_LINES - 1] + ["..."] + lines[-1:]
     return "".join("\n    " + line[:300] for line in lines)
 
 

@@ -5,7 +5,9 @@
 // It reads the bag itself rather than taking its topics from `rosbag play`, whose transport
 // gives no order between /clock and the inputs. Parameters: ~bag (the file), ~rate (times real
 // time, 1), ~wait (true: start when marble_state has a subscriber, so that a recorder of the
-// replay misses nothing; false); ~world_frame, ~board_frame, ~marble_frame as the node's.
+// replay misses nothing; false), ~keep_alive (false: exit when the recording ends, as `rosbag
+// play` does; true: stay, its last state shown); ~world_frame, ~board_frame, ~marble_frame as
+// the node's.
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 
@@ -22,12 +24,13 @@ using marble_maze_ros::NodeSettings;
 
 class ReplayNode {
  public:
-  ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
     std::string bag;
     if (!pnh.getParam("bag", bag))
       throw std::runtime_error(pnh.resolveName("bag") + ": required: a bag of record.launch");
     rate_ = marble_maze_ros::readNumber(pnh, "rate", 1.0, 1e-6, 1e6);
     wait_ = marble_maze_ros::readFlag(pnh, "wait", false);
+    keep_alive_ = marble_maze_ros::readFlag(pnh, "keep_alive", false);
     recording_ = marble_maze_ros::readRecording(bag);
     replay_ = std::make_unique<marble_maze_ros::Replayer>(recording_);
     NodeSettings settings;
@@ -57,6 +60,10 @@ class ReplayNode {
       start_wall_ = ros::WallTime::now();
     }
     const mm::Session& session = replay_->session();
+    if (!started_) {  // the state the snapshot holds, if the original published one then
+      out_->publishDue(session, replay_->stamp(), replay_->stepNs(), false);
+      started_ = true;
+    }
     const double target = start_sim_ + rate_ * (ros::WallTime::now() - start_wall_).toSec();
     while (session.simulation().time() < target) {
       bool shown = false;  // a reset, a place or a load is shown at once, as the original did
@@ -67,8 +74,15 @@ class ReplayNode {
       }
       if (shown) out_->publishDue(session, replay_->stamp(), replay_->stepNs(), true);
       if (replay_->stamp() >= replay_->end()) {
-        ROS_INFO("replay: the recording ends at %.3f s", replay_->stamp().toSec());
+        ROS_INFO("replay: the recording ends at %.3f s%s", replay_->stamp().toSec(),
+                 keep_alive_ ? "" : "; exiting");
         timer_.stop();
+        // (roscpp sends what is published from a queue of its own: a moment for the last
+        // messages to reach their subscribers before the node goes.)
+        if (!keep_alive_)
+          exit_timer_ = nh_.createWallTimer(
+              ros::WallDuration(kLinger), [](const ros::WallTimerEvent&) { ros::requestShutdown(); },
+              true);
         break;
       }
       replay_->step();
@@ -81,13 +95,18 @@ class ReplayNode {
     clock_pub_.publish(clock);
   }
 
+  static constexpr double kLinger = 1.0;  // s of wall time
+
+  ros::NodeHandle nh_;
   double rate_ = 1;
   bool wait_ = false;
+  bool keep_alive_ = false;
+  bool started_ = false;
   marble_maze_ros::Recording recording_;
   std::unique_ptr<marble_maze_ros::Replayer> replay_;
   std::unique_ptr<marble_maze_ros::StateOutput> out_;
   ros::Publisher clock_pub_;
-  ros::WallTimer timer_;
+  ros::WallTimer timer_, exit_timer_;
   ros::WallTime start_wall_;
   double start_sim_ = 0;
 };

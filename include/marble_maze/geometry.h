@@ -11,6 +11,10 @@ using Mat3 = Eigen::Matrix3d;
 using Quat = Eigen::Quaterniond;
 using Index3 = Eigen::Vector3i;
 
+constexpr double kPi = 3.14159265358979323846;
+/// The most a board tilts either way (rad): the bound of tilt_limit and of every tilt.
+constexpr double kQuarterTurn = kPi / 2;
+
 /// a x b, the same to the bit as Eigen's cross(), with its x and y worked out as one pair: the
 /// step stores cross products and soon reads them back, x and y together, which waits long when
 /// they were stored apart (the processor cannot forward two stores to one load).

@@ -30,7 +30,6 @@ std::string outOfRangeText(const std::string& name, double value, double min, do
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 
 double parseNumber(const std::string& key, const std::string& text, double min, double max) {
   double value = 0;
@@ -213,17 +212,17 @@ const std::vector<Entry>& entries() {
                    {"velocity_verlet", IntegratorKind::VelocityVerlet},
                    {"rk4", IntegratorKind::RungeKutta4}})),
       live(number("tilt_limit", "rad", "largest |roll| and |pitch| of the board",
-                  &Params::tilt_limit, 0.0, kPi / 2)),
+                  &Params::tilt_limit, 0.0, kQuarterTurn)),
       live(number("tilt_rate_limit", "rad/s", "largest tilt rate of the board, 0 = unlimited",
                   &Params::tilt_rate_limit, 0.0, 1000.0)),
       live(number("tilt_response_time", "s",
                   "time constant with which the board follows a target tilt (a servo), 0 = at "
                   "once",
                   &Params::tilt_response_time, 0.0, 10.0)),
-      number("initial_roll", "rad", "board roll at the start", &Params::initial_roll, -kPi / 2,
-             kPi / 2),
-      number("initial_pitch", "rad", "board pitch at the start", &Params::initial_pitch, -kPi / 2,
-             kPi / 2),
+      number("initial_roll", "rad", "board roll at the start", &Params::initial_roll, -kQuarterTurn,
+             kQuarterTurn),
+      number("initial_pitch", "rad", "board pitch at the start", &Params::initial_pitch,
+             -kQuarterTurn, kQuarterTurn),
       {{"board_position", "m", "where the board's pivot is in the world: X,Y,Z"},
        [](Params& p, const std::string& text) {
          p.board_position = parseVec3("board_position", text);

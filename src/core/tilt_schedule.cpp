@@ -8,11 +8,6 @@
 #include "marble_maze/text_file.h"
 
 namespace marble_maze {
-namespace {
-
-constexpr double kQuarterTurn = 1.5707963267948966;  // rad
-
-}  // namespace
 
 TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& source) {
   TiltSchedule schedule;
@@ -43,7 +38,7 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
     for (const auto& [name, angle] : {std::pair{"roll", p.roll}, {"pitch", p.pitch}})
       if (std::abs(angle) > kQuarterTurn)
         throw error(std::string(name) + ": " + exactText(angle) +
-                    " rad is more than a quarter turn (1.5707963267949 rad)");
+                    " rad is more than a quarter turn (" + exactText(kQuarterTurn) + " rad)");
     if (!schedule.points_.empty() && p.time <= schedule.points_.back().time)
       throw error("times must increase, got " + fields[0] + " after " +
                   exactText(schedule.points_.back().time));

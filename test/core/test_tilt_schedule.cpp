@@ -59,9 +59,9 @@ TEST(TiltSchedule, EachWrongFileIsRefusedNamingItsLine) {
             "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got 'O,0,0'");
   // Angles within a quarter turn (the largest tilt_limit): 1e308 would overflow between rows.
   EXPECT_EQ(errorOf("0,0,0\n0.001,1e308,0\n"),
-            "prog.csv:2: roll: 1e+308 rad is more than a quarter turn (1.5707963267949 rad)");
+            "prog.csv:2: roll: 1e+308 rad is more than a quarter turn (1.5707963267948966 rad)");
   EXPECT_EQ(errorOf("0,0,-1.6\n"),
-            "prog.csv:1: pitch: -1.6 rad is more than a quarter turn (1.5707963267949 rad)");
+            "prog.csv:1: pitch: -1.6 rad is more than a quarter turn (1.5707963267948966 rad)");
   EXPECT_EQ(errorOf("0,1.5707963267948966,0\n"), "");
   EXPECT_EQ(errorOf(""), "prog.csv: no rows t,roll,pitch");
   try {

@@ -9,9 +9,12 @@ rm -rf "$results"
 # The sanitized and the fuzzing builds meanwhile, at the lowest priority: the ROS tests mostly wait
 # on time, and a compiler niced to 19 takes only what they leave (the runs below build nothing
 # more, or build again and tell what failed).
-(nice -n 19 bash "$repo/scripts/sanitize.sh" --build-only
- nice -n 19 bash "$repo/scripts/fuzz.sh" --build-only) > /dev/null 2>&1 &
+# (In a process group of its own, which Ctrl-C or the end of this script takes down with it.)
+setsid -w bash -c 'nice -n 19 bash "$0/scripts/sanitize.sh" --build-only
+                nice -n 19 bash "$0/scripts/fuzz.sh" --build-only' "$repo" > /dev/null 2>&1 &
 prebuild=$!
+trap 'kill -- -$prebuild 2> /dev/null' EXIT
+trap 'exit 130' INT TERM
 (cd "$WS" && catkin_make run_tests -j2) > "$WS/run_tests.log" 2>&1
 status=$?
 wait $prebuild

@@ -42,6 +42,10 @@ class Autopilot {
  public:
   Autopilot(const Maze& maze, double marble_radius, const AutopilotSettings& settings);
 
+  /// Steers on with other settings (the board's physics changed, the maze and marble did not):
+  /// the route and the way along it stay.
+  void setSettings(const AutopilotSettings& settings) { settings_ = settings; }
+
   /// Plans from the marble's board-frame position; false when no goal can be reached from there.
   bool plan(const Vec2& position);
   const Route& route() const { return route_; }

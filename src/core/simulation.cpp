@@ -53,7 +53,9 @@ Simulation::Simulation(const Scene& scene)
   if (!why.empty()) {
     std::ostringstream message;
     if (params_.has_start_position) {
-      message << "start_position: the marble cannot start there: " << why;
+      // (The radius said too: a radius set over the file's can be what keeps the marble out.)
+      message << "start_position: a marble of radius " << exactText(params_.marble_radius)
+              << " m cannot start there: " << why;
       // Set by the maze file: the error points at it there, as the file's other errors do.
       if (const Scene::FileKey* set = findFileKey(scene, "start_position"))
         throw MazeFileError(scene.source, set->line, set->column, message.str());

@@ -4,7 +4,7 @@
 // tilt limit. It draws its route on `autopilot_route` (a marker in the board frame) and says what
 // it does on `~status` (latched: playing, reached the goal, fell in, no route). When the marble
 // is reset after a hole or the goal it plans and plays again; where no route exists it says so,
-// levels the board and stops playing until the marble is reset or a new maze comes.
+// levels the board and stops playing until the marble is elsewhere (reset, put, a new maze).
 // Parameters: ~rate (Hz, 55), ~max_speed (m/s along the route, 0.1), ~start_delay (s of wall
 // time before it first steers, 1: a new publisher's first messages are lost to subscribers that
 // have not connected yet, a recorder among them).
@@ -46,23 +46,41 @@ class AutopilotNode {
 
  private:
   void onMaze(const mm::MazeDescription::ConstPtr& msg) {
+    mm::Scene scene;
     try {
-      scene_ = marble_maze_ros::sceneOf(*msg);
+      scene = marble_maze_ros::sceneOf(*msg);
     } catch (const std::exception& e) {
       ROS_ERROR("autopilot: %s", e.what());
       return;
     }
     mm::AutopilotSettings settings;
-    settings.tilt_limit = scene_.params.tilt_limit;
+    settings.tilt_limit = scene.params.tilt_limit;
     settings.acceleration_per_tilt =
-        (scene_.params.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0) * scene_.params.gravity;
+        (scene.params.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0) * scene.params.gravity;
     settings.max_speed = max_speed_;
-    settings.lead = scene_.params.tilt_response_time;
+    settings.lead = scene.params.tilt_response_time;
+    // The same maze again with other physics (a reconfigure): it steers on along its route.
+    const bool same_board = pilot_ && maze_ && sameBoard(*maze_, *msg);
+    scene_ = scene;
+    maze_ = msg;
+    if (same_board) {
+      pilot_->setSettings(settings);
+      ROS_INFO("autopilot: maze '%s' with new physics", msg->name.c_str());
+      return;
+    }
     pilot_ = std::make_unique<mm::Autopilot>(scene_.maze, scene_.params.marble_radius, settings);
     board_frame_ = msg->header.frame_id;
     playing_ = false;
     stuck_ = false;
     ROS_INFO("autopilot: maze '%s'", msg->name.c_str());
+  }
+
+  /// Whether two descriptions are of the same board and marble: the route stands.
+  static bool sameBoard(const mm::MazeDescription& a, const mm::MazeDescription& b) {
+    return a.header.frame_id == b.header.frame_id && a.name == b.name &&
+           a.thin_width == b.thin_width && a.wide_width == b.wide_width && a.slots == b.slots &&
+           a.solid == b.solid && a.pivot == b.pivot && a.start == b.start && a.goals == b.goals &&
+           a.holes == b.holes && a.marble_radius == b.marble_radius;
   }
 
   void onState(const mm::MarbleState::ConstPtr& msg) { state_ = msg; }
@@ -76,9 +94,12 @@ class AutopilotNode {
       stuck_ = false;  // a reset gives it another go
       return;
     }
-    if (stuck_) return;
     mm::Observation seen;
     seen.position = mm::Vec2(s.position_in_board.x, s.position_in_board.y);
+    // Stuck where no route starts, it tries again once the marble is elsewhere: put there, or
+    // on a new maze's start (a state of the old maze can come after the new maze did).
+    if (stuck_ && (seen.position - stuck_at_).norm() < scene_.params.marble_radius) return;
+    stuck_ = false;
     if (!playing_ && !start(s, seen.position)) return;
     // The velocity in the board frame: the world's, turned back by the board's tilt.
     const mm::Vec3 velocity = mm::Board::rotationFor(s.roll, s.pitch).transpose() *
@@ -101,6 +122,7 @@ class AutopilotNode {
           position.x(), position.y(), scene_.maze.name().c_str());
       publishTilt(0, 0);
       stuck_ = true;
+      stuck_at_ = position;
       return false;
     }
     playing_ = true;
@@ -162,11 +184,13 @@ class AutopilotNode {
   double rate_ = 55, max_speed_ = 0.1;
   ros::WallTime start_after_;
   mm::Scene scene_;
+  mm::MazeDescription::ConstPtr maze_;  // the last one taken
   std::unique_ptr<mm::Autopilot> pilot_;
   std::string board_frame_ = "board";
   mm::MarbleState::ConstPtr state_;
   bool playing_ = false;
-  bool stuck_ = false;  // no route: waits for a reset or a new maze
+  bool stuck_ = false;  // no route from stuck_at_: waits for the marble to be elsewhere
+  mm::Vec2 stuck_at_ = mm::Vec2::Zero();
   ros::Time started_;
   ros::Publisher tilt_pub_, route_pub_, status_pub_;
   ros::Subscriber maze_sub_, state_sub_;

@@ -2,23 +2,29 @@
 // a queue of 100 messages that no option changes, and a lockstep agent's burst of commands or a
 // paused node's queued commands let loose make more inputs than that at once: the bag then lacks
 // inputs and cannot be replayed. This writes what rosbag record writes (each message as it came,
-// its connection header, the time it came in ROS time), through subscriptions as deep as asked.
+// its connection header, the time it came in ROS time), through subscriptions as deep as asked,
+// and when stopped it writes what had come before closing the bag (roscpp would drop it).
 //
 //   ~bag     the bag file to write (required)
 //   ~topics  the topics, a list or one text of names separated by spaces (required)
 //   ~queue   each subscription's queue, in messages (default 100000)
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <topic_tools/shape_shifter.h>
 
+#include <algorithm>
+#include <atomic>
 #include <boost/make_shared.hpp>
+#include <csignal>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "node_settings.h"
-#include "run_node.h"
 
 namespace marble_maze_ros {
 namespace {
@@ -52,13 +58,22 @@ class Recorder {
     if (path.empty()) throw std::runtime_error(pnh.resolveName("bag") + ": required");
     const double queue = readNumber(pnh, "queue", 100000, 1, 1e7);
     const std::vector<std::string> topics = topicsFrom(pnh);
-    std::vector<std::string> resolved;  // (a bad name refused before the bag is opened)
+    // (A bad name is refused before the bag is opened; a name given twice, as `chat /chat`, is
+    // recorded once.)
+    std::vector<std::string> resolved;
     for (const std::string& topic : topics) {
+      std::string full;
       try {
-        resolved.push_back(nh.resolveName(topic));
+        full = nh.resolveName(topic);
       } catch (const ros::InvalidNameException& e) {
         throw std::runtime_error(pnh.resolveName("topics") + ": " + e.what());
       }
+      if (std::find(resolved.begin(), resolved.end(), full) != resolved.end()) {
+        ROS_WARN("%s: %s is given twice; recorded once", pnh.resolveName("topics").c_str(),
+                 full.c_str());
+        continue;
+      }
+      resolved.push_back(full);
     }
     try {
       bag_.open(path, rosbag::bagmode::Write);
@@ -66,28 +81,31 @@ class Recorder {
       throw std::runtime_error(pnh.resolveName("bag") + ": " + path + ": " + e.what());
     }
     most_early_ = static_cast<std::size_t>(queue);
-    for (std::size_t k = 0; k < topics.size(); ++k) {
-      const std::string& topic = topics[k];
+    for (const std::string& topic : resolved) {
       // Any type: the first publisher's connection says which (as rosbag record subscribes).
+      // Written under its full name, as `rosbag record -a` writes it (rosbag play --topics /tilt).
       ros::SubscribeOptions options;
-      options.topic = resolved[k];
+      options.topic = topic;
       options.queue_size = static_cast<std::uint32_t>(queue);
       options.md5sum = ros::message_traits::md5sum<topic_tools::ShapeShifter>();
       options.datatype = ros::message_traits::datatype<topic_tools::ShapeShifter>();
-      // (Written under the name as given, as rosbag record writes it: a relative one plays back
-      // into the player's namespace, and `rosbag play --topics tilt` finds it.)
       options.helper = boost::make_shared<ros::SubscriptionCallbackHelperT<const Event&>>(
           [this, topic](const Event& event) { write(topic, event); });
       options.transport_hints = ros::TransportHints().tcpNoDelay();
       subscribers_.push_back(nh.subscribe(options));
     }
-    ROS_INFO("record: %zu topics into %s", topics.size(), path.c_str());
+    // (A relative path is taken from the node's working directory: roslaunch's is ROS_HOME.)
+    std::error_code error;
+    const std::filesystem::path full_path = std::filesystem::absolute(path, error);
+    ROS_INFO("record: %zu topics into %s", resolved.size(),
+             error ? path.c_str() : full_path.c_str());
   }
 
   ~Recorder() {
     subscribers_.clear();
     // A clock that never started: what came is kept, at the earliest time a bag holds.
     for (const Early& e : early_) writeAt(e.topic, ros::TIME_MIN, e.event);
+    tellDropped();
   }
 
  private:
@@ -100,12 +118,29 @@ class Recorder {
     // decades to a clock played from another bag.
     const ros::Time now = ros::Time::now();
     if (now.isZero()) {
-      if (early_.size() < most_early_) early_.push_back({topic, event});
+      if (early_.size() < most_early_) {
+        early_.push_back({topic, event});
+      } else if (dropped_++ == 0) {
+        ROS_WARN(
+            "record: more than %zu messages (~queue) before the clock started: dropping "
+            "the later ones, from %s",
+            most_early_, topic.c_str());
+      }
       return;
     }
     for (const Early& e : early_) writeAt(e.topic, now, e.event);
     early_.clear();
+    tellDropped();
     writeAt(topic, now, event);
+  }
+
+  void tellDropped() {
+    if (dropped_ == 0) return;
+    ROS_ERROR(
+        "record: dropped %llu messages that came before the clock started: the bag lacks "
+        "them (a larger ~queue keeps them)",
+        static_cast<unsigned long long>(dropped_));
+    dropped_ = 0;
   }
 
   void writeAt(const std::string& topic, const ros::Time& time, const Event& event) {
@@ -120,11 +155,31 @@ class Recorder {
   std::vector<ros::Subscriber> subscribers_;
   std::vector<Early> early_;  // come before ROS time was valid, in their order
   std::size_t most_early_ = 0;
+  std::uint64_t dropped_ = 0;  // of the early ones, beyond most_early_
 };
+
+std::atomic<bool> g_stop{false};
 
 }  // namespace
 }  // namespace marble_maze_ros
 
+// Stopped (Ctrl-C, roslaunch's SIGINT, SIGTERM), the recorder first writes the messages that had
+// come in: roscpp's own handler would shut down at once and drop its queue, the end of a burst.
 int main(int argc, char** argv) {
-  return marble_maze_ros::runNode<marble_maze_ros::Recorder>(argc, argv, "record");
+  using marble_maze_ros::g_stop;
+  ros::init(argc, argv, "record", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, [](int) { g_stop = true; });
+  std::signal(SIGTERM, [](int) { g_stop = true; });
+  ros::NodeHandle nh, pnh("~");  // (they outlive a throwing constructor: see run_node.h)
+  try {
+    marble_maze_ros::Recorder recorder(nh, pnh);
+    ros::CallbackQueue& queue = *ros::getGlobalCallbackQueue();
+    while (!g_stop && ros::ok()) queue.callAvailable(ros::WallDuration(0.1));
+    queue.callAvailable();  // what had come when the stop came
+  } catch (const std::exception& e) {
+    ROS_FATAL("%s", e.what());
+    return 1;
+  }
+  ros::shutdown();
+  return 0;
 }

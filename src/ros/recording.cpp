@@ -192,15 +192,24 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
                         {in.velocity.x, in.velocity.y, in.velocity.z},
                         {in.angular_velocity.x, in.angular_velocity.y, in.angular_velocity.z});
         break;
-      case K::LOAD: {
-        mm::Scene scene = mm::parseScene(in.maze_text, in.maze_source);
-        mm::replaceParams(&scene, paramsOf(in.params));
-        session_->load(scene);
-        followStep();
-        break;
-      }
+      case K::LOAD:
       case K::PARAMS:
-        session_->setParams(paramsOf(in.params));
+        // (The session took them: only parameters set over the recording's can be refused, a
+        // marble too wide for the loaded maze's start, say.)
+        try {
+          if (in.kind == K::LOAD) {
+            mm::Scene scene = mm::parseScene(in.maze_text, in.maze_source);
+            mm::replaceParams(&scene, paramsOf(in.params));
+            session_->load(scene);
+          } else {
+            session_->setParams(paramsOf(in.params));
+          }
+        } catch (const std::runtime_error& e) {
+          throw mm::ParamError(
+              std::string(in.kind == K::LOAD ? "the maze load" : "the reconfigure") +
+              " recorded as input " + std::to_string(in.index) + " (at " +
+              std::to_string(in.header.stamp.toSec()) + " s) refuses them: " + e.what());
+        }
         followStep();
         break;
       case K::ANCHOR:

@@ -147,7 +147,11 @@ int rerun(const Options& o) {
     // A state recorded at this step's stamp shows the simulation before or after the inputs
     // that came between the steps (a reset shown at once).
     const Shown before = shown(sim);
-    replay->applyDue();
+    try {
+      replay->applyDue();
+    } catch (const mm::ParamError& e) {  // a recorded load or reconfigure under --set's values
+      throw UsageError(std::string("--set: ") + e.what());
+    }
     const ros::Time stamp = replay->stamp();
     for (; next < states.size() && states[next].header.stamp <= stamp; ++next) {
       if (states[next].header.stamp < stamp) continue;  // published while paused: not a step's

@@ -423,7 +423,8 @@ TEST(Extremes, AMarbleThatCannotStartWhereItIsPutIsRefusedNamingTheKey) {
   setParam(
       in_wall.params, "start_position",
       std::to_string(wall.x()) + "," + std::to_string(wall.y()) + "," + std::to_string(wall.z()));
-  EXPECT_NE(refusal(in_wall).find("start_position: the marble cannot start there: inside tile (0,"),
+  EXPECT_NE(refusal(in_wall).find(
+                "start_position: a marble of radius 0.006 m cannot start there: inside tile (0,"),
             std::string::npos)
       << refusal(in_wall);
   Scene off_board = scene;
@@ -436,8 +437,9 @@ TEST(Extremes, AMarbleThatCannotStartWhereItIsPutIsRefusedNamingTheKey) {
         {"0.0136,0.0706,1e6", "more than 100 m above the board"}}) {
     Scene where = scene;
     setParam(where.params, "start_position", bad.first);
-    EXPECT_EQ(refusal(where),
-              std::string("start_position: the marble cannot start there: ") + bad.second)
+    EXPECT_EQ(
+        refusal(where),
+        std::string("start_position: a marble of radius 0.006 m cannot start there: ") + bad.second)
         << bad.first;
   }
   Scene high = scene;  // a drop from 50 m is a drop

@@ -255,7 +255,8 @@ TEST(MazeFileError, AStartPositionInAWallNamesItsPlaceInTheFile) {
     EXPECT_EQ(e.line, 10);
     EXPECT_EQ(e.column, 19);
     EXPECT_NE(std::string(e.what()).find(
-                  "bad.yaml:10:19: start_position: the marble cannot start there: inside tile"),
+                  "bad.yaml:10:19: start_position: a marble of radius 0.006 m cannot start there: "
+                  "inside tile"),
               std::string::npos)
         << e.what();
   }
@@ -269,6 +270,20 @@ TEST(MazeFileError, AStartPositionInAWallNamesItsPlaceInTheFile) {
   // A start the maze allows is taken from the file as before.
   overrideParam(&over, "start_position", "-0.0125,0,0.006");
   EXPECT_NO_THROW(Simulation{over});
+  // The file's start refused for a radius set over the file's: the radius is said.
+  Scene wider =
+      parseScene(kGrid + kLayout + "physics:\n  start_position: [-0.0125, 0, 0.006]\n", "bad.yaml");
+  EXPECT_NO_THROW(Simulation{wider});
+  overrideParam(&wider, "marble_radius", "0.009");
+  try {
+    Simulation sim(wider);
+    ADD_FAILURE() << "a marble into the floor was accepted";
+  } catch (const MazeFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.yaml:10:19: start_position: a marble of radius "
+                                         "0.009 m cannot start there: inside tile"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(MazeFileError, UnknownPhysicsKeyNamesTheKeyAndLine) {

@@ -133,7 +133,8 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--every 1e300", "--every: expected a whole number from 1 to 2147483647"},
       {"--every 2.5", "--every: expected a whole number"},
       {"--set start_position=0,0,0.006",
-       "start_position: the marble cannot start there: inside tile (10, 8, 1)"},
+       "start_position: a marble of radius 0.006 m cannot start there: inside tile (10, 8, 1)"},
+
       {"--set marble_radius=0.015", "marble_radius: a marble of radius 0.015 m does not fit"},
       {"--set marble_radius=0.015", "start cell (1, 15, the 'S' at <embedded:classic>:13:4)"},
       {"--maze /dev/zero", "/dev/zero: more than 16 MB"},  // a device read without end

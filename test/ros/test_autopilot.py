@@ -4,7 +4,11 @@ autopilot_classic.test, autopilot_prototype.test and autopilot_no_route.test).
 
 Private parameters of this test: ~maze (the maze file the node loaded), ~expect ("goal": the
 marble reaches a goal within ~limit seconds of ROS time with no hole on the way; "no_route": the
-autopilot says so and stops). It also checks the latched `maze` topic against the maze file:
+autopilot says so and stops), ~reconfigure_after (s of wall time into the play: the node's
+restitution is changed through dynamic_reconfigure, which publishes `maze` again, and the
+autopilot steers on along its route instead of starting over; unset: no change), ~load (a maze
+the test loads through `load_maze` once the autopilot plays: it plays the new maze from its start
+and reaches its goal, whatever states of the old maze it still hears; unset: none). It also checks the latched `maze` topic against the maze file:
 its name, slots, solid tiles, start, goals and holes, read here from the YAML independently of
 the package's parser.
 """
@@ -15,9 +19,11 @@ import unittest
 import rospy
 import rostest
 import yaml
+from dynamic_reconfigure.client import Client
 from std_msgs.msg import String
 
 from marble_maze.msg import MarbleState, MazeDescription, MazeEvent
+from marble_maze.srv import LoadMaze
 
 WALL = "+-|#"
 
@@ -53,11 +59,12 @@ class AutopilotTest(unittest.TestCase):
         self.lock = threading.Lock()
         self.maze = None
         self.status = None
-        self.states, self.events = [], []
+        self.states, self.events, self.statuses = [], [], []
         rospy.Subscriber("maze", MazeDescription, self.keep("maze"), queue_size=1)
         rospy.Subscriber("marble_state", MarbleState, self.keep("states"), queue_size=100)
         rospy.Subscriber("events", MazeEvent, self.keep("events"), queue_size=1000)
         rospy.Subscriber("autopilot/status", String, self.keep("status"), queue_size=10)
+        rospy.Subscriber("autopilot/status", String, self.keep("statuses"), queue_size=10)
 
     def keep(self, name):
         def store(msg):
@@ -99,6 +106,20 @@ class AutopilotTest(unittest.TestCase):
             self.wait(lambda: self.states, 20, "marble_state")
             with self.lock:
                 start = self.states[0].header.stamp
+            change_after = rospy.get_param("~reconfigure_after", None)
+            if change_after is not None:
+                self.wait(lambda: any("playing" in m.data for m in self.statuses), 20, "playing")
+                time.sleep(change_after)
+                Client("marble_maze", timeout=10).update_configuration({"restitution": 0.4})
+            load = rospy.get_param("~load", None)
+            if load is not None:
+                self.wait(lambda: any("playing" in m.data for m in self.statuses), 20, "playing")
+                time.sleep(1.0)
+                rospy.wait_for_service("load_maze", 10)
+                answer = rospy.ServiceProxy("load_maze", LoadMaze)(load)
+                self.assertTrue(answer.success, answer.message)
+                with self.lock:
+                    start = self.states[-1].header.stamp
             self.wait(lambda: any(e.kind == MazeEvent.GOAL for e in self.events), limit * 2 + 20,
                       "goal")
             with self.lock:
@@ -108,6 +129,11 @@ class AutopilotTest(unittest.TestCase):
             print("reached the goal in %.2f s of ROS time" % took)
             self.assertFalse(holes, "fell in before the goal")
             self.assertLess(took, limit)
+            if change_after is not None:  # one play, from the start to the goal
+                with self.lock:
+                    said = [m.data for m in self.statuses]
+                self.assertEqual(sum("playing" in m for m in said), 1, said)
+                self.assertIn("reached the goal", said[-1])
         else:
             self.wait(lambda: self.status is not None and "no route" in self.status.data, 20,
                       "'no route' on autopilot/status")

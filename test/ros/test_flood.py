@@ -3,8 +3,8 @@
 commands at 10 kHz for 10 s, each stamped now and numbered in its roll. Checks that
   - marble_state keeps coming at 50 Hz of ROS time (+-15 %): rostest's own hztest, run during the
     flood (rostest runs a launch file's tests one after another, so the test starts it), and a
-    count here; in each second of it, some state arrives within 0.1 s of its stamp: the node keeps its step
-    rate (the least lag of a second, as this process's own delays only add to it);
+    count here; in each second of it, half the states arrive within 0.1 s of their stamps: the node keeps its
+    step rate (a median, which this process's own hiccups do not move);
   - the node's resident memory (VmRSS) during and after the flood stays within 30 MB of what it
     was before: the queues are bounded (a tilt subscription of 100, a command queue of 10,000);
   - the commands it applies (the TILT inputs it publishes on `inputs`, numbered by the flood)
@@ -104,16 +104,15 @@ class FloodTest(unittest.TestCase):
         self.assertEqual(hztest.returncode, 0, "hztest during the flood:\n" + hz_output)
         rate = len(flood_states) / (end - begin - 2)
         self.assertAlmostEqual(rate, 50.0, delta=7.5, msg=summary)
-        # How far the node's states lag ROS time, second by second: the least lag of each second,
-        # since the delays of this test's own process (busy hearing 10 kHz of inputs) only add to
-        # it. A node that fell behind its step rate would lag more and more.
-        lags = {}
+        # How far the node's states lag ROS time, second by second: the median of each second,
+        # which a hiccup of this test's own process (busy hearing 10 kHz of inputs) does not move.
+        # A node that fell behind its step rate would lag more and more.
+        by_second = {}
         for stamp, received in flood_states:
-            second = int(stamp - begin)
-            lags[second] = min(lags.get(second, 1e9), received - stamp)
-        self.assertLess(max(lags.values()), 0.1,
-                        "marble_state fell behind ROS time: the least lag of each second %s"
-                        % ["%.3f" % lags[k] for k in sorted(lags)])
+            by_second.setdefault(int(stamp - begin), []).append(received - stamp)
+        medians = [sorted(lags)[len(lags) // 2] for _, lags in sorted(by_second.items())]
+        self.assertLess(max(medians), 0.1, "marble_state fell behind ROS time: the median lag "
+                        "of each second %s" % ["%.3f" % m for m in medians])
         self.assertLess(max(during) - before, RSS_BOUND_KB, summary)
         self.assertLess(after - before, RSS_BOUND_KB, summary)
         self.assertGreaterEqual(len(heard), sent // 2, summary)

@@ -1,17 +1,19 @@
-// The ROS layer's translations, without a ROS master: the clock's mapping, the maze's message and
-// the markers.
+// The ROS layer's translations, without a ROS master: the clock's mapping, the maze's message,
+// the markers, a recording re-simulated.
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "../../src/ros/maze_description.h"
 #include "../../src/ros/maze_markers.h"
+#include "../../src/ros/recording.h"
 #include "../../src/ros/seq_gaps.h"
 #include "../../src/ros/sim_clock.h"
 #include "marble_maze/maze_file.h"
 
 namespace marble_maze_ros {
 namespace {
+namespace mm = marble_maze;
 
 TEST(SimClock, StepsHaveExactStampsAndCommandsTakeTheFirstStepAtOrAfterTheirStamp) {
   SimClock clock;
@@ -96,6 +98,59 @@ TEST(SeqGaps, ALoopOrARestartIsNoLossAndMemoryStaysBounded) {
   EXPECT_LE(gaps.sources(), SeqGaps::kMostSources);
   // A gap is still told after that.
   EXPECT_EQ(lostIn(&gaps, run(0, 10) + run(20, 2 * SeqGaps::kQuiet), "/tilt /late"), 10u);
+}
+
+/// A session on the classic maze from its start, recorded with one input: a load of the
+/// prototype at step 10 (what a bag of record.launch holds, without the bag).
+Recording recordingWithALoad() {
+  const mm::Scene classic = mm::loadScene("classic"), prototype = mm::loadScene("prototype");
+  const mm::Session session(classic, mm::SessionSettings());
+  Recording r;
+  r.scene.maze_text = classic.text;
+  r.scene.maze_source = classic.source;
+  r.scene.params = mm::paramsText(classic.params);
+  r.snapshot.header.stamp = ros::Time(100);
+  r.snapshot.state = session.save();
+  r.snapshot.params = r.scene.params;
+  r.snapshot.anchor_stamp = ros::Time(100);
+  marble_maze::SimInput load;
+  load.kind = marble_maze::SimInput::LOAD;
+  load.index = 0;
+  load.step = 10;
+  load.header.stamp = ros::Time(100.01);
+  load.maze_text = prototype.text;
+  load.maze_source = prototype.source;
+  load.params = mm::paramsText(prototype.params);
+  r.inputs.push_back(load);
+  return r;
+}
+
+TEST(Replayer, ARecordedLoadRefusingParametersSetOverTheRecordingSaysWhichAndWhy) {
+  const Recording recording = recordingWithALoad();
+  Replayer plain(recording);
+  for (int k = 0; k < 10; ++k) {
+    plain.applyDue();
+    plain.step();
+  }
+  ASSERT_EQ(plain.applyDue().size(), 1u);
+  EXPECT_EQ(plain.session().simulation().maze().name(), mm::loadScene("prototype").maze.name());
+  // A radius the classic start takes and the prototype's does not (0.0105 m): the re-run stops
+  // at the load with a ParamError (simulate: exit status 2) naming the input and the cause.
+  Replayer wider(recording, {{"marble_radius", "0.0105"}});
+  for (int k = 0; k < 10; ++k) {
+    wider.applyDue();
+    wider.step();
+  }
+  try {
+    wider.applyDue();
+    ADD_FAILURE() << "the load took a marble too wide for the prototype's start";
+  } catch (const mm::ParamError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the maze load recorded as input 0 (at 100.01"), std::string::npos) << what;
+    EXPECT_NE(what.find("marble_radius: a marble of radius 0.0105 m does not fit"),
+              std::string::npos)
+        << what;
+  }
 }
 
 TEST(MazeDescription, DescribesTheMazeAndReadsBackTheSameMaze) {

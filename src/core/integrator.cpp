@@ -5,7 +5,6 @@
 namespace marble_maze {
 namespace {
 
-
 /// The curve through the stretch with the start's velocity and the end's displacement, whose
 /// rate at the end is `end_rate`; the velocity along it changes linearly from the start's to the
 /// end's.

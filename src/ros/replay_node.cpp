@@ -81,8 +81,8 @@ class ReplayNode {
         // messages to reach their subscribers before the node goes.)
         if (!keep_alive_)
           exit_timer_ = nh_.createWallTimer(
-              ros::WallDuration(kLinger), [](const ros::WallTimerEvent&) { ros::requestShutdown(); },
-              true);
+              ros::WallDuration(kLinger),
+              [](const ros::WallTimerEvent&) { ros::requestShutdown(); }, true);
         break;
       }
       replay_->step();

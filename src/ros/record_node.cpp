@@ -168,8 +168,12 @@ std::atomic<bool> g_stop{false};
 int main(int argc, char** argv) {
   using marble_maze_ros::g_stop;
   ros::init(argc, argv, "record", ros::init_options::NoSigintHandler);
-  std::signal(SIGINT, [](int) { g_stop = true; });
-  std::signal(SIGTERM, [](int) { g_stop = true; });
+  // (A second signal ends it at once, as it would any program.)
+  for (const int signal : {SIGINT, SIGTERM})
+    std::signal(signal, [](int received) {
+      g_stop = true;
+      std::signal(received, SIG_DFL);
+    });
   ros::NodeHandle nh, pnh("~");  // (they outlive a throwing constructor: see run_node.h)
   try {
     marble_maze_ros::Recorder recorder(nh, pnh);

@@ -205,6 +205,7 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
             session_->setParams(paramsOf(in.params));
           }
         } catch (const std::runtime_error& e) {
+          if (overrides_.empty()) throw;  // (what the bag holds: said as it is)
           throw mm::ParamError(
               std::string(in.kind == K::LOAD ? "the maze load" : "the reconfigure") +
               " recorded as input " + std::to_string(in.index) + " (at " +

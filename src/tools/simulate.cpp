@@ -149,8 +149,8 @@ int rerun(const Options& o) {
     const Shown before = shown(sim);
     try {
       replay->applyDue();
-    } catch (const mm::ParamError& e) {  // a recorded load or reconfigure under --set's values
-      throw UsageError(std::string("--set: ") + e.what());
+    } catch (const mm::ParamError& e) {  // a recorded load or reconfigure (under --set's values)
+      throw UsageError(std::string(o.sets.empty() ? "--bag: " : "--set: ") + e.what());
     }
     const ros::Time stamp = replay->stamp();
     for (; next < states.size() && states[next].header.stamp <= stamp; ++next) {

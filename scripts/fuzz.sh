@@ -2,7 +2,7 @@
 # The fuzzers of the maze-file parser and of the runner's command line (libFuzzer with
 # AddressSanitizer and UndefinedBehaviorSanitizer, Debian's clang), built beside the workspace
 # (WS/fuzz):
-#   bash scripts/fuzz.sh [--build-only] [SECONDS [RESULTS_DIR]]
+#   bash scripts/fuzz.sh [SECONDS [RESULTS_DIR]]
 # replays every input of fuzz/regressions/ (each a crash or hang once found), then runs each
 # fuzzer for SECONDS of wall time (default 30) from the checked-in corpus (and mazes/), new inputs going to a
 # scratch corpus in WS/fuzz. A finding stops the run: its input is written to WS/fuzz/findings/,
@@ -11,8 +11,6 @@
 set -uo pipefail
 export PATH="/usr/bin:$PATH"
 . "$(dirname "$0")/workspace.sh"
-build_only=false
-[ "${1:-}" = --build-only ] && { build_only=true; shift; }
 seconds=${1:-30}
 results=${2:-}
 build="$WS/fuzz"
@@ -32,7 +30,6 @@ if ! { cmake -S "$repo/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BU
   echo "the fuzzers' build failed; the whole log is $build/build.log"
   exit 1
 fi
-$build_only && exit 0
 status=0
 for fuzzer in maze args; do
   binary="$build/${fuzzer}_fuzzer"

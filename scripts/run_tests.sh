@@ -6,26 +6,8 @@ export PATH="/usr/bin:$PATH"
 . "$(dirname "$0")/workspace.sh"
 results=$WS/build/test_results
 rm -rf "$results"
-# The sanitized and the fuzzing builds meanwhile, at the lowest priority: the ROS tests mostly wait
-# on time, and a compiler niced to 19 takes only what they leave (the runs below build nothing
-# more, or build again and tell what failed).
-# (In a process group of its own, which Ctrl-C or the end of this script takes down with it, in
-# this session: a new one, as setsid makes, is a scheduling group of its own on kernels with
-# autogroup, where a nice counts for nothing against the tests. The fuzzers' compiler is
-# installed first, in the foreground.)
-bash "$repo/scripts/install_deps.sh" clang libclang-rt-14-dev > /dev/null
-set -m
-(nice -n 19 bash "$repo/scripts/sanitize.sh" --build-only
- nice -n 19 bash "$repo/scripts/fuzz.sh" --build-only) > /dev/null 2>&1 &
-prebuild=$!
-set +m
-trap 'kill -- -$prebuild 2> /dev/null' EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
 (cd "$WS" && catkin_make run_tests -j2) > "$WS/run_tests.log" 2>&1
 status=$?
-wait $prebuild
-trap - EXIT
 extra=()
 if [ $status -ne 0 ]; then
   tail -n 40 "$WS/run_tests.log"

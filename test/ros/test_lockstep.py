@@ -26,7 +26,8 @@ COMMANDS = 200
 class LockstepTest(unittest.TestCase):
     def connect(self):
         """The states as they come (a list and a condition notified on each), and the tilt
-        publisher, connected to the node."""
+        publisher, connected to the node. Its queue holds a whole burst: rospy shares one
+        connection among a process's publishers of a topic, with the queue of the first."""
         states, arrived = [], threading.Condition()
 
         def on_state(msg):
@@ -35,7 +36,7 @@ class LockstepTest(unittest.TestCase):
                 arrived.notify()
 
         rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1000)
-        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=10)
+        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1000)
         deadline = time.time() + 20
         while tilt.get_num_connections() == 0 and time.time() < deadline:
             time.sleep(0.05)
@@ -62,11 +63,7 @@ class LockstepTest(unittest.TestCase):
     def test_a_burst_of_commands_is_taken_whole(self):
         # 300 commands at once, each running its period before the next is read: every one is
         # taken (the node's queue was 100 deep, and the rest went without a word).
-        states, arrived, tilt = self.connect()
-        burst = rospy.Publisher("tilt", BoardTilt, queue_size=1000)
-        while burst.get_num_connections() == 0:
-            time.sleep(0.05)
-        time.sleep(0.5)
+        states, arrived, burst = self.connect()
         with arrived:
             before = len(states)
         for _ in range(300):

@@ -349,6 +349,7 @@ void Simulation::impact(double time) {
 
 Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration) {
   Velocities b{start.linear + sim_->forces_.acceleration(start.linear) * duration, start.angular};
+  if (sim_->acting_.empty()) return b;  // in flight: nothing constrains it (and no work is done)
   // The first sample's outcomes say which contacts hold the marble; later ones are scratch.
   sim_->solver_.constrain(sim_->acting_, &b,
                           sampled_ ? &sim_->sample_outcomes_ : &sim_->acting_outcomes_);

@@ -4,8 +4,8 @@
 # (WS/fuzz):
 #   bash scripts/fuzz.sh [SECONDS [RESULTS_DIR]]
 # replays every input of fuzz/regressions/ (each a crash or hang once found), then runs each
-# fuzzer for SECONDS of wall time (default 30) from the checked-in corpus (and mazes/), new inputs going to a
-# scratch corpus in WS/fuzz. A finding stops the run: its input is written to WS/fuzz/findings/,
+# fuzzer for SECONDS of wall time (default 30; the two side by side) from the checked-in corpus
+# (and mazes/), new inputs going to a scratch corpus in WS/fuzz. A finding stops the run: its input is written to WS/fuzz/findings/,
 # to be fixed and then added to fuzz/regressions/ for good. Prints each fuzzer's executions and,
 # given RESULTS_DIR, writes a JUnit file there with a case per fuzzer (for make test's count).
 set -uo pipefail
@@ -14,12 +14,12 @@ export PATH="/usr/bin:$PATH"
 seconds=${1:-30}
 results=${2:-}
 build="$WS/fuzz"
-cases=""
-record() {  # record NAME FAILURE-MESSAGE-OR-EMPTY
+record() {  # record NAME FAILURE-MESSAGE-OR-EMPTY: a JUnit case, into the fuzzer's own file
   if [ -z "$2" ]; then
-    cases+="<testcase classname=\"fuzz\" name=\"$1\"/>"
+    echo "<testcase classname=\"fuzz\" name=\"$1\"/>" >> "$cases_file"
   else
-    cases+="<testcase classname=\"fuzz\" name=\"$1\"><failure message=\"$2\"/></testcase>"
+    echo "<testcase classname=\"fuzz\" name=\"$1\"><failure message=\"$2\"/></testcase>" \
+      >> "$cases_file"
   fi
 }
 mkdir -p "$build/findings"
@@ -30,8 +30,10 @@ if ! { cmake -S "$repo/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BU
   echo "the fuzzers' build failed; the whole log is $build/build.log"
   exit 1
 fi
-status=0
-for fuzzer in maze args; do
+fuzz() {  # fuzz NAME: its regressions, then SECONDS of fuzzing; exits non-zero on a failure
+  local fuzzer=$1
+  cases_file="$build/$fuzzer.cases"
+  : > "$cases_file"
   binary="$build/${fuzzer}_fuzzer"
   regressions=("$repo/fuzz/regressions/$fuzzer"/*)
   if [ -e "${regressions[0]}" ]; then
@@ -39,8 +41,7 @@ for fuzzer in maze args; do
       tail -n 30 "$build/$fuzzer-regressions.log"
       echo "$fuzzer fuzzer: a regression input fails again (log: $build/$fuzzer-regressions.log)"
       record "${fuzzer}_regressions" "a regression input fails again"
-      status=1
-      continue
+      return 1
     fi
     record "${fuzzer}_regressions" ""
   fi
@@ -59,10 +60,22 @@ for fuzzer in maze args; do
     grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$build/$fuzzer.log" | head -n 20
     echo "$fuzzer fuzzer: a finding (log: $build/$fuzzer.log; input in $build/findings/)"
     record "${fuzzer}_fuzzer" "a finding: see $build/$fuzzer.log"
-    status=1
-  else
-    record "${fuzzer}_fuzzer" ""
+    return 1
   fi
+  record "${fuzzer}_fuzzer" ""
+}
+# The two side by side, a core each (each runs for the same wall time); their reports after both.
+pids=()
+for fuzzer in maze args; do
+  fuzz "$fuzzer" > "$build/$fuzzer.report" 2>&1 &
+  pids+=($!)
+done
+status=0
+for pid in "${pids[@]}"; do wait "$pid" || status=1; done
+cases=""
+for fuzzer in maze args; do
+  cat "$build/$fuzzer.report"
+  cases+=$(cat "$build/$fuzzer.cases")
 done
 if [ -n "$results" ]; then
   mkdir -p "$results"

@@ -5,9 +5,10 @@
 #   bash scripts/fuzz.sh [SECONDS [RESULTS_DIR]]
 # replays every input of fuzz/regressions/ (each a crash or hang once found), then runs each
 # fuzzer for SECONDS of wall time (default 30; the two side by side) from the checked-in corpus
-# (and mazes/), new inputs going to a scratch corpus in WS/fuzz. A finding stops the run: its input is written to WS/fuzz/findings/,
-# to be fixed and then added to fuzz/regressions/ for good. Prints each fuzzer's executions and,
-# given RESULTS_DIR, writes a JUnit file there with a case per fuzzer (for make test's count).
+# (and mazes/), new inputs going to a scratch corpus in WS/fuzz. A finding stops the run: its
+# input is written to WS/fuzz/findings/, to be fixed and then added to fuzz/regressions/ for good.
+# Prints each fuzzer's executions and, given RESULTS_DIR, writes a JUnit file there with a case per
+# fuzzer (for make test's count).
 set -uo pipefail
 export PATH="/usr/bin:$PATH"
 . "$(dirname "$0")/workspace.sh"
@@ -31,8 +32,7 @@ if ! { cmake -S "$repo/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BU
   exit 1
 fi
 fuzz() {  # fuzz NAME: its regressions, then SECONDS of fuzzing; exits non-zero on a failure
-  local fuzzer=$1
-  cases_file="$build/$fuzzer.cases"
+  local fuzzer=$1 cases_file="$build/$1.cases"  # (record writes to it)
   : > "$cases_file"
   binary="$build/${fuzzer}_fuzzer"
   regressions=("$repo/fuzz/regressions/$fuzzer"/*)
@@ -55,7 +55,8 @@ fuzz() {  # fuzz NAME: its regressions, then SECONDS of fuzzing; exits non-zero 
     -artifact_prefix="$build/findings/$fuzzer-" > "$build/$fuzzer.log" 2>&1
   result=$?
   runs=$(grep -o "stat::number_of_executed_units: *[0-9]*" "$build/$fuzzer.log" | grep -o "[0-9]*$")
-  echo "$fuzzer fuzzer: ${runs:-0} executions in $seconds s, $(ls "$scratch" | wc -l) inputs in its corpus"
+  echo "$fuzzer fuzzer: ${runs:-0} executions in $seconds s," \
+    "$(ls "$scratch" | wc -l) inputs in its corpus"
   if [ $result -ne 0 ]; then
     grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$build/$fuzzer.log" | head -n 20
     echo "$fuzzer fuzzer: a finding (log: $build/$fuzzer.log; input in $build/findings/)"

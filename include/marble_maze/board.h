@@ -5,6 +5,7 @@
 #include "marble_maze/bytes.h"
 #include "marble_maze/geometry.h"
 #include "marble_maze/params.h"
+#include "marble_maze/rotation.h"
 
 namespace marble_maze {
 
@@ -33,7 +34,19 @@ class Board {
   /// The constant angular velocity (world frame) that carried the board over the last step.
   const Vec3& angularVelocity() const { return angular_velocity_; }
 
-  static Mat3 rotationFor(double roll, double pitch);
+  /// R = Ry(pitch) Rx(roll). (Inline: a matrix returned through memory, written a number at a
+  /// time, is read back in pairs by the next product, which then waits for the writes to land.)
+  static Mat3 rotationFor(double roll, double pitch) {
+    CosSinc cs_r, cs_p;
+    cosSinc(roll * roll, pitch * pitch, &cs_r, &cs_p);
+    const double cr = cs_r.cos, sr = roll * cs_r.sinc;
+    const double cp = cs_p.cos, sp = pitch * cs_p.sinc;
+    Mat3 r;                     // Ry(pitch) * Rx(roll), multiplied out
+    r << cp, sp * sr, sp * cr,  //
+        0, cr, -sr,             //
+        -sp, cp * sr, cp * cr;
+    return r;
+  }
 
   /// Everything that changes as the board moves (not its limits), bit for bit.
   void save(ByteWriter* out) const;

@@ -29,18 +29,6 @@ void Board::setLimits(const Params& params) {
   pitch_rate_ = clampRate(pitch_rate_);
 }
 
-Mat3 Board::rotationFor(double roll, double pitch) {
-  // Ry(pitch) * Rx(roll), multiplied out.
-  const CosSinc cs_r = cosSinc(roll * roll), cs_p = cosSinc(pitch * pitch);
-  const double cr = cs_r.cos, sr = roll * cs_r.sinc;
-  const double cp = cs_p.cos, sp = pitch * cs_p.sinc;
-  Mat3 r;
-  r << cp, sp * sr, sp * cr,  //
-      0, cr, -sr,             //
-      -sp, cp * sr, cp * cr;
-  return r;
-}
-
 void Board::save(ByteWriter* out) const {
   out->put(static_cast<std::int32_t>(drive_));
   for (double v : {approach_step_, approach_, target_roll_, target_pitch_, roll_rate_, pitch_rate_,

@@ -312,11 +312,12 @@ void Simulation::substep(double h, double start_time) {
   // takes at its start). A rotation, not normals interpolated one by one: contacts at right
   // angles stay at right angles.
   const double at = 0.5 - integrator_->velocityLag();
-  Mat3 forces_pose;
   const bool turned = at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0);
-  if (turned)
-    forces_pose = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
-                                     start_pitch + at * (board_.pitch() - start_pitch));
+  // (Made where it stays, not moved there: see rotationFor.)
+  const Mat3 forces_pose =
+      turned ? Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
+                                  start_pitch + at * (board_.pitch() - start_pitch))
+             : Mat3();
   advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
@@ -502,15 +503,17 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
 }
 
 void Simulation::checkFinish(double time) {
-  const Vec3 p = frame_.toGrid(marble_.position);
   const double r = params_.marble_radius;
   const double floor_top = maze_.floorTop();
-  // Only a marble low enough to finish needs its column looked up.
-  const bool below = p.z() < floor_top - r;  // wholly below the playing surface
-  const bool at_goal_height = !maze_.goals().empty() && p.z() < floor_top + 2 * r;
-  const bool finite = marble_.position.allFinite();
+  // Only a marble low enough to finish needs its column looked up: its height in the grid says
+  // (as toGrid works it out), and whether it is finite: a coordinate that is not makes it not
+  // finite, whatever the board's pose (0 times infinity is not a number).
+  const double height = frame_.rotation.col(2).dot(marble_.position) + frame_.grid_pivot.z();
+  const bool below = height < floor_top - r;  // wholly below the playing surface
+  const bool at_goal_height = !maze_.goals().empty() && height < floor_top + 2 * r;
+  const bool finite = std::isfinite(height);
   if (finite && !below && !at_goal_height) return;
-  const Maze::Cell cell = maze_.cellAt(p);
+  const Maze::Cell cell = maze_.cellAt(frame_.toGrid(marble_.position));
   const Index3 floor_tile(cell.i, cell.j, 0);
   if (!finite) {
     hold(MarblePhase::OffBoard, EventKind::OffBoard, floor_tile, time);

@@ -140,13 +140,11 @@ class Simulation {
 
   void substep(double h, double start_time);
   void pushOut();
-  /// The substep after its start's impacts; `forces_pose`, when not the start's, is the board's
-  /// pose the contacts push in until the first impact.
-  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin,
-               const Mat3* forces_pose);
-  /// The contacts that act over a stretch (acting_): all but those the marble is leaving. With a
-  /// `pose`, their normals are the board's in it (contacts_ holds those of the substep's start).
-  void chooseActingContacts(double duration, const Vec3& previous_spin, const Mat3* pose);
+  /// The substep after its start's impacts, the contacts' normals and surface velocities those
+  /// of the board's pose they push in until the first impact.
+  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin);
+  /// The contacts that act over a stretch (acting_): all but those the marble is leaving.
+  void chooseActingContacts(double duration, const Vec3& previous_spin);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(Sweep* sweep) const;
   void impact(double time);

@@ -312,13 +312,19 @@ void Simulation::substep(double h, double start_time) {
   // takes at its start). A rotation, not normals interpolated one by one: contacts at right
   // angles stay at right angles.
   const double at = 0.5 - integrator_->velocityLag();
-  const bool turned = at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0);
-  // (Made where it stays, not moved there: see rotationFor.)
-  const Mat3 forces_pose =
-      turned ? Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
-                                  start_pitch + at * (board_.pitch() - start_pitch))
-             : Mat3();
-  advance(h, start_time, start, previous_spin, turned ? &forces_pose : nullptr);
+  if (at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0)) {
+    const Mat3 pose = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
+                                         start_pitch + at * (board_.pitch() - start_pitch));
+    // The board's velocity is taken where the marble's surface meets the normal in that pose,
+    // as findContacts takes it: so every contact asks one rigid motion of the marble. (Here,
+    // while the pose is at hand: the start's normals have done their work.)
+    for (Contact& c : contacts_) {
+      c.normal = pose * c.grid_normal;
+      c.surface_velocity =
+          frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
+    }
+  }
+  advance(h, start_time, start, previous_spin);
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
   checkFinish(start_time + h);
@@ -359,17 +365,11 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
   return b;
 }
 
-void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin,
-                                      const Mat3* pose) {
+void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {
   acting_.clear();
   for (const Contact& c : contacts_) {
-    // In another pose, the board's velocity is taken where the marble's surface meets the normal
-    // there, as findContacts takes it: so every contact asks one rigid motion of the marble.
-    const Vec3 normal = pose ? *pose * c.grid_normal : c.normal;
-    const Vec3 surface_velocity =
-        pose ? frame_.surfaceVelocity(marble_.position - params_.marble_radius * normal)
-             : c.surface_velocity;
-    const Vec3 relative = marble_.velocity - surface_velocity;
+    const Vec3& normal = c.normal;
+    const Vec3 relative = marble_.velocity - c.surface_velocity;
     // How much the marble's normal velocity relative to the surface under it changes over the
     // stretch while it moves with the board: it crosses to other points of the turning board,
     // |w| |v| h; the surface's normal turns under its relative velocity, |w| |v_rel| h, and its
@@ -386,10 +386,7 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     };
     const bool leaving =
         integrator_->bends() && away > kRestingSpeed && away > kRestingSpeed + drift();
-    if (leaving) continue;
-    acting_.push_back(c);
-    acting_.back().normal = normal;
-    acting_.back().surface_velocity = surface_velocity;
+    if (!leaving) acting_.push_back(c);
   }
 }
 
@@ -436,7 +433,7 @@ void Simulation::keepOnHeldContacts(Sweep* sweep) const {
 }
 
 void Simulation::advance(double h, double start_time, const GridFrame& start,
-                         const Vec3& previous_spin, const Mat3* forces_pose) {
+                         const Vec3& previous_spin) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
   // stretch is swept from where the marble was on the board at the start (the board then in its
@@ -450,9 +447,9 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     // (After an impact the contacts are found in the end pose, and push along its normals over
     // what is left of the substep.)
     if (impacts == 0)
-      chooseActingContacts(rest, previous_spin, forces_pose);
+      chooseActingContacts(rest, previous_spin);
     else
-      chooseActingContacts(rest, frame_.angular_velocity, nullptr);
+      chooseActingContacts(rest, frame_.angular_velocity);
     dynamics.beginStretch();
     Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
                                            Stretch{rest, h, impacts > 0});

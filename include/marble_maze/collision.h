@@ -109,8 +109,8 @@ struct Sweep {
   Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds
   /// True when the walk of the grid (timeOfImpact) would report no impact: the path stays where
   /// the near tiles were gathered, and each of them lies behind a plane it keeps to (as the walk
-  /// judges it) or farther from its start than the radius plus how far it strays (|path| +
-  /// |bend|). False says nothing.
+  /// judges it) or farther from its start than the radius plus how far it strays (bounded by the
+  /// sums of the sizes of path's and bend's components). False says nothing.
   bool clearOf(const NearTiles& near) const;
 };
 

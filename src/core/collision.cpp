@@ -193,7 +193,7 @@ bool behindAPlane(const Sweep& w, const Box& box) {
 /// How far from its start the marble of a sweep can reach a tile: its radius plus how far the
 /// path strays, |s path + s^2 bend| <= |path| + |bend| for s in [0, 1], with room for rounding
 /// (which moves a tile's bounds and the path's extremes by some 1e-16 m). No tile farther than
-/// this can be met. (The lengths bounded by the sums of their components' sizes, at most 1.7
+/// this can be met. (The lengths bounded by the sums of their components' sizes, at most sqrt(3)
 /// times more: two square roots one after the other held up every step that waits on the
 /// answer, and a bound a little wide only leaves a few more tiles to the exact tests.)
 double farthestReach(const Sweep& w) {

@@ -23,22 +23,39 @@ TEST(CosSinc, MatchesTheLibraryToRoundingOnBothSidesOfTheSeries) {
   EXPECT_NEAR(cosSinc(below * below).sinc, cosSinc(above * above).sinc, 3e-16);
 }
 
-TEST(CosSinc, OfTwoAnglesAtOnceIsEachAloneToTheBit) {
-  // Roll and pitch side by side in two lanes give what each gives alone, bit for bit: angles
-  // from 0 to 0.5 rad, within the series and beyond (where one lane's angle is beyond and the
-  // other's within), of either sign.
+TEST(CosSinc, LanesGiveTheScalarSeriesToTheBit) {
+  // The series worked out in SSE2's two lanes (cos and sin(x) / x of one angle side by side, and
+  // roll's and pitch's side by side) give, bit for bit, what the scalar Estrin scheme below gave
+  // before them, for angles of either sign up to the series' end (0.25 rad): the simulation's
+  // trajectories stand on it.
+  const auto scalar = [](double x2) {
+    const double x4 = x2 * x2, x8 = x4 * x4;
+    const double cos = (1 - 0.5 * x2) + x4 * (1.0 / 24 - x2 * (1.0 / 720)) +
+                       x8 * ((1.0 / 40320 - x2 * (1.0 / 3628800)) + x4 * (1.0 / 479001600));
+    const double sinc = (1 - x2 * (1.0 / 6)) + x4 * (1.0 / 120 - x2 * (1.0 / 5040)) +
+                        x8 * (1.0 / 362880 - x2 * (1.0 / 39916800));
+    return CosSinc{cos, sinc};
+  };
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> angle(-0.5, 0.5);
-  for (int n = 0; n < 100000; ++n) {
-    const double a = n == 0 ? 0.0 : angle(random), b = n % 7 == 0 ? 0.25 : angle(random);
+  std::uniform_real_distribution<double> angle(-0.25, 0.25);
+  for (int n = 0; n < 200000; ++n) {
+    const double a = n == 0 ? 0.0 : n == 1 ? 0.25 : angle(random), b = angle(random);
+    const CosSinc expected_a = scalar(a * a), expected_b = scalar(b * b);
+    const CosSinc one = cosSinc(a * a);
     CosSinc pa, pb;
     cosSinc(a * a, b * b, &pa, &pb);
-    const CosSinc sa = cosSinc(a * a), sb = cosSinc(b * b);
-    ASSERT_EQ(pa.cos, sa.cos) << "a " << a;
-    ASSERT_EQ(pa.sinc, sa.sinc) << "a " << a;
-    ASSERT_EQ(pb.cos, sb.cos) << "b " << b;
-    ASSERT_EQ(pb.sinc, sb.sinc) << "b " << b;
+    ASSERT_EQ(one.cos, expected_a.cos) << "x " << a;
+    ASSERT_EQ(one.sinc, expected_a.sinc) << "x " << a;
+    ASSERT_EQ(pa.cos, expected_a.cos) << "roll " << a;
+    ASSERT_EQ(pa.sinc, expected_a.sinc) << "roll " << a;
+    ASSERT_EQ(pb.cos, expected_b.cos) << "pitch " << b;
+    ASSERT_EQ(pb.sinc, expected_b.sinc) << "pitch " << b;
   }
+  // Beyond the series in either lane, both angles are each alone's.
+  CosSinc pa, pb;
+  cosSinc(0.09, 0.01, &pa, &pb);
+  EXPECT_EQ(pa.cos, cosSinc(0.09).cos);
+  EXPECT_EQ(pb.sinc, scalar(0.01).sinc);
 }
 
 TEST(TurnedBy, MatchesTheAngleAxisQuaternionFromTinyToLargeTurns) {

@@ -368,7 +368,6 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
 void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {
   acting_.clear();
   for (const Contact& c : contacts_) {
-    const Vec3& normal = c.normal;
     const Vec3 relative = marble_.velocity - c.surface_velocity;
     // How much the marble's normal velocity relative to the surface under it changes over the
     // stretch while it moves with the board: it crosses to other points of the turning board,
@@ -377,7 +376,7 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     // last moved with it, |w - w_before| |p|. A departure slower than that is the lag of a
     // contact held at the stretch's start point and the board's last motion: the contact acts,
     // bringing the marble to the board's motion or letting it go.
-    const double away = relative.dot(normal);
+    const double away = relative.dot(c.normal);
     const auto drift = [&] {
       const double w = frame_.angular_velocity.norm(),
                    p = (c.grid_point - frame_.grid_pivot).norm();  // from the pivot

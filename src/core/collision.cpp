@@ -458,7 +458,14 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       forEachSolidTileAround(maze, c, near->reach, [&](const Index3& t, const Box& box) {
         if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
           near->layers.push_back(near->tiles.size());
-        near->tiles.push_back({box, t});
+        // (Copied a coordinate at a time, as tileBox put the box together: copied in pairs, it
+        // would be read back before those writes had landed, and wait for them.)
+        NearTiles::Tile& kept = near->tiles.emplace_back();
+        for (int a = 0; a < 3; ++a) {
+          kept.box.lower[a] = box.lower[a];
+          kept.box.upper[a] = box.upper[a];
+        }
+        kept.index = t;
       });
     }
     for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);

@@ -319,7 +319,7 @@ void Simulation::substep(double h, double start_time) {
     // as findContacts takes it: so every contact asks one rigid motion of the marble. (Here,
     // while the pose is at hand: the start's normals have done their work.)
     for (Contact& c : contacts_) {
-      c.normal = pose * c.grid_normal;
+      c.normal = product(pose, c.grid_normal);  // (the pose was just put together)
       c.surface_velocity =
           frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
     }

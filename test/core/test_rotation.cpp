@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "marble_maze/board.h"
 #include "marble_maze/rotation.h"
 
 namespace marble_maze {
@@ -56,6 +57,38 @@ TEST(CosSinc, LanesGiveTheScalarSeriesToTheBit) {
   cosSinc(0.09, 0.01, &pa, &pb);
   EXPECT_EQ(pa.cos, cosSinc(0.09).cos);
   EXPECT_EQ(pb.sinc, scalar(0.01).sinc);
+}
+
+TEST(Geometry, ProductAndCrossGiveEigensToTheBit) {
+  // product() and cross() read and pair their operands to spare the step a wait, and must give
+  // what Eigen's m * v and a.cross(b) give, bit for bit (the trajectories stand on it), rotations
+  // and other matrices alike, with zeros of either sign among the entries.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> entry(-1, 1);
+  const auto value = [&](int n, int k) {
+    const int kind = (n + 3 * k) % 11;
+    return kind == 0 ? 0.0 : kind == 1 ? -0.0 : entry(random);
+  };
+  for (int n = 0; n < 200000; ++n) {
+    Mat3 m;
+    if (n % 2 == 0) {
+      m = Board::rotationFor(0.3 * entry(random), 0.3 * entry(random));
+    } else {
+      for (int k = 0; k < 9; ++k) m.data()[k] = value(n, k);
+    }
+    const Vec3 v(value(n, 9), value(n, 10), value(n, 11));
+    const Vec3 w(entry(random), value(n, 12), entry(random));
+    const Vec3 by_eigen = m * v, ours = product(m, v);
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(std::signbit(ours[a]), std::signbit(by_eigen[a])) << "row " << a << " at " << n;
+      ASSERT_EQ(ours[a], by_eigen[a]) << "row " << a << " at " << n;
+    }
+    const Vec3 cross_eigen = v.cross(w), ours_cross = cross(v, w);
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(std::signbit(ours_cross[a]), std::signbit(cross_eigen[a])) << a << " at " << n;
+      ASSERT_EQ(ours_cross[a], cross_eigen[a]) << a << " at " << n;
+    }
+  }
 }
 
 TEST(TurnedBy, MatchesTheAngleAxisQuaternionFromTinyToLargeTurns) {

@@ -28,11 +28,13 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 /// m v, the same to the bit as Eigen's product, reading m an entry at a time: a matrix just put
 /// together an entry at a time (a rotation from its angles) and read back in pairs, as Eigen's
 /// product reads its columns, waits for its writes to land. (Eigen sums rows 0 and 1, a pair,
-/// from their first term on, and row 2 from its last term back.)
+/// from their first term on, and row 2 as its first term plus the sum of the other two.) To the
+/// bit only where no FMA fuses a product into a sum, as in the package's x86-64 build: built for
+/// a processor with FMA (-march=native), Eigen fuses and this may not.
 inline Vec3 product(const Mat3& m, const Vec3& v) {
   return Vec3((m(0, 0) * v.x() + m(0, 1) * v.y()) + m(0, 2) * v.z(),
               (m(1, 0) * v.x() + m(1, 1) * v.y()) + m(1, 2) * v.z(),
-              (m(2, 2) * v.z() + m(2, 1) * v.y()) + m(2, 0) * v.x());
+              m(2, 0) * v.x() + (m(2, 1) * v.y() + m(2, 2) * v.z()));
 }
 
 /// A marble's linear and angular velocity (world frame), as the integrators advance them and the

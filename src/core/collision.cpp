@@ -458,8 +458,8 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       forEachSolidTileAround(maze, c, near->reach, [&](const Index3& t, const Box& box) {
         if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
           near->layers.push_back(near->tiles.size());
-        // (Copied a coordinate at a time, as tileBox put the box together: copied in pairs, it
-        // would be read back before those writes had landed, and wait for them.)
+        // (Built in place: push_back({box, t}) put a temporary on the stack, its index written
+        // as three 4-byte stores and read back as one 8-byte load, which waited for them.)
         NearTiles::Tile& kept = near->tiles.emplace_back();
         for (int a = 0; a < 3; ++a) {
           kept.box.lower[a] = box.lower[a];

@@ -459,7 +459,8 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
         if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
           near->layers.push_back(near->tiles.size());
         // (Built in place: push_back({box, t}) put a temporary on the stack, its index written
-        // as three 4-byte stores and read back as one 8-byte load, which waited for them.)
+        // as three 4-byte stores and read back as one 8-byte load, which waited for them. The
+        // box is copied as tileBox wrote it, a coordinate at a time, as it was timed.)
         NearTiles::Tile& kept = near->tiles.emplace_back();
         for (int a = 0; a < 3; ++a) {
           kept.box.lower[a] = box.lower[a];

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The fuzzers of the maze-file parser and of the runner's command line (libFuzzer with
-# AddressSanitizer and UndefinedBehaviorSanitizer, Debian's clang), built beside the workspace
-# (WS/fuzz):
+# The fuzzers of the maze-file parser, of the runner's command line and of a session's restore
+# from a bag's snapshot (libFuzzer with AddressSanitizer and UndefinedBehaviorSanitizer, Debian's
+# clang), built beside the workspace (WS/fuzz):
 #   bash scripts/fuzz.sh [SECONDS [RESULTS_DIR]]
 # replays every input of fuzz/regressions/ (each a crash or hang once found), then runs each
-# fuzzer for SECONDS of wall time (default 30; the two side by side) from the checked-in corpus
+# fuzzer for SECONDS of wall time (default 30; the three side by side) from the checked-in corpus
 # (and mazes/), new inputs going to a scratch corpus in WS/fuzz. A finding stops the run: its
 # input is written to WS/fuzz/findings/, to be fixed and then added to fuzz/regressions/ for good.
 # Prints each fuzzer's executions and, given RESULTS_DIR, writes a JUnit file there with a case per
@@ -65,16 +65,17 @@ fuzz() {  # fuzz NAME: its regressions, then SECONDS of fuzzing; exits non-zero 
   fi
   record "${fuzzer}_fuzzer" ""
 }
-# The two side by side, a core each (each runs for the same wall time); their reports after both.
+# The three side by side on the machine's cores (each runs for the same wall time); their reports
+# after all three.
 pids=()
-for fuzzer in maze args; do
+for fuzzer in maze args snapshot; do
   fuzz "$fuzzer" > "$build/$fuzzer.report" 2>&1 &
   pids+=($!)
 done
 status=0
 for pid in "${pids[@]}"; do wait "$pid" || status=1; done
 cases=""
-for fuzzer in maze args; do
+for fuzzer in maze args snapshot; do
   cat "$build/$fuzzer.report"
   cases+=$(cat "$build/$fuzzer.cases")
 done

@@ -50,11 +50,18 @@ class Board {
 
   /// Everything that changes as the board moves (not its limits), bit for bit.
   void save(ByteWriter* out) const;
+  /// Back to a saved state, which then moves under this board's limits and servo (targets and
+  /// rates brought within them). Throws std::runtime_error naming a value no board has (not
+  /// finite, beyond a quarter turn, a rotation not its angles'), changing nothing then.
   void restore(ByteReader* in);
 
  private:
   enum class Drive { Target, Rate };
 
+  /// Targets and rates within the limits.
+  void keepWithinLimits();
+  /// The fraction of the way to its target the servo covers in h seconds (its first-order lag).
+  double approachOver(double h) const;
   double clampTilt(double angle) const;
   double clampRate(double rate) const;
 

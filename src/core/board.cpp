@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "marble_maze/rotation.h"
 
@@ -23,6 +25,10 @@ void Board::setLimits(const Params& params) {
   tilt_rate_limit_ = params.tilt_rate_limit;
   response_time_ = params.tilt_response_time;
   approach_step_ = 0;  // the lag's step fraction is worked out again
+  keepWithinLimits();
+}
+
+void Board::keepWithinLimits() {
   target_roll_ = clampTilt(target_roll_);
   target_pitch_ = clampTilt(target_pitch_);
   roll_rate_ = clampRate(roll_rate_);
@@ -39,12 +45,39 @@ void Board::save(ByteWriter* out) const {
 }
 
 void Board::restore(ByteReader* in) {
-  drive_ = static_cast<Drive>(in->get<std::int32_t>());
-  for (double* v : {&approach_step_, &approach_, &target_roll_, &target_pitch_, &roll_rate_,
-                    &pitch_rate_, &roll_, &pitch_})
-    *v = in->get<double>();
-  rotation_ = in->mat3();
-  angular_velocity_ = in->vec3();
+  Board next = *this;  // (this board changes only once all of the state is read and sound)
+  const auto drive = in->get<std::int32_t>();
+  if (drive != static_cast<std::int32_t>(Drive::Target) &&
+      drive != static_cast<std::int32_t>(Drive::Rate))
+    throw std::runtime_error("snapshot: the board's drive " + std::to_string(drive) +
+                             " is neither a target (0) nor rates (1)");
+  next.drive_ = static_cast<Drive>(drive);
+  const char* names[] = {"servo step", "servo approach", "target roll", "target pitch",
+                         "roll rate",  "pitch rate",     "roll",        "pitch"};
+  double* values[] = {&next.approach_step_, &next.approach_,  &next.target_roll_,
+                      &next.target_pitch_,  &next.roll_rate_, &next.pitch_rate_,
+                      &next.roll_,          &next.pitch_};
+  for (int k = 0; k < 8; ++k) {
+    *values[k] = in->get<double>();
+    if (!std::isfinite(*values[k]))
+      throw std::runtime_error(std::string("snapshot: the board's ") + names[k] + " is not finite");
+  }
+  if (!(std::abs(next.roll_) <= kQuarterTurn && std::abs(next.pitch_) <= kQuarterTurn))
+    throw std::runtime_error("snapshot: the board's roll or pitch is beyond a quarter turn");
+  // The rotation is always its angles' (reset and advance set them together): any other is not
+  // a board's state.
+  next.rotation_ = in->mat3();
+  if (next.rotation_ != rotationFor(next.roll_, next.pitch_))
+    throw std::runtime_error("snapshot: the board's rotation is not that of its roll and pitch");
+  next.angular_velocity_ = in->vec3();
+  if (!next.angular_velocity_.allFinite())
+    throw std::runtime_error("snapshot: the board's angular velocity is not finite");
+  // Saved under other limits or another servo (a replay with other physics), it moves under
+  // this board's: its targets and rates within them, its servo's approach over the saved step
+  // worked out anew (the same to the bit under the same servo, so the state is unchanged).
+  next.keepWithinLimits();
+  if (next.approach_step_ > 0) next.approach_ = next.approachOver(next.approach_step_);
+  *this = next;
 }
 
 void Board::reset(double roll, double pitch) {
@@ -54,6 +87,10 @@ void Board::reset(double roll, double pitch) {
   drive_ = Drive::Target;
   rotation_ = rotationFor(roll_, pitch_);
   angular_velocity_.setZero();
+}
+
+double Board::approachOver(double h) const {
+  return response_time_ > 0 ? 1.0 - std::exp(-h / response_time_) : 1.0;
 }
 
 double Board::clampTilt(double angle) const {
@@ -86,7 +123,7 @@ void Board::advance(double h, double most_turn) {
     // closer than rounding is taken as reached, so that the board comes to rest.
     if (h != approach_step_) {  // the step is fixed: the exponential is worked out once
       approach_step_ = h;
-      approach_ = response_time_ > 0 ? 1.0 - std::exp(-h / response_time_) : 1.0;
+      approach_ = approachOver(h);
     }
     // (The rate limit bounds the step's turn: no quotient by h and product back, which the
     // next step's angle would wait on.)

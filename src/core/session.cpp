@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace marble_maze {
 
@@ -78,19 +79,28 @@ void Session::reset() {
   commanded_ = false;
 }
 
+namespace {
+
+/// Why a marble of these physics cannot move at this velocity and spin (finite), naming which,
+/// or "" when it can: faster than a step can resolve.
+std::string whyTooFast(const Params& p, const Vec3& velocity, const Vec3& spin) {
+  if (velocity.norm() > p.mostSpeed())
+    return "velocity: more than 1e5 radii a step, which a step cannot resolve";
+  if (spin.norm() * p.marble_radius > p.mostSpeed())  // its surface as fast
+    return "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
+           "resolve";
+  return "";
+}
+
+}  // namespace
+
 void Session::place(const Vec3& position_in_board, const Vec3& velocity, const Vec3& spin) {
   const std::string why = sim_.whyNotPlaceable(position_in_board);
   if (!why.empty()) throw std::invalid_argument("position: " + why);
   if (!velocity.allFinite()) throw std::invalid_argument("velocity: not finite");
   if (!spin.allFinite()) throw std::invalid_argument("angular_velocity: not finite");
-  const Params& p = sim_.params();
-  if (velocity.norm() > p.mostSpeed())
-    throw std::invalid_argument(
-        "velocity: more than 1e5 radii a step, which a step cannot resolve");
-  if (spin.norm() * p.marble_radius > p.mostSpeed())  // its surface as fast
-    throw std::invalid_argument(
-        "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
-        "resolve");
+  const std::string too_fast = whyTooFast(sim_.params(), velocity, spin);
+  if (!too_fast.empty()) throw std::invalid_argument(too_fast);
   sim_.placeMarble(position_in_board, velocity, spin);
   finished_ = false;
 }
@@ -144,15 +154,27 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
     throw std::runtime_error("snapshot: not a state of this version");
   Simulation sim = sim_;
   sim.restore(&in, version >= 2);
+  const std::string too_fast =
+      whyTooFast(sim.params(), sim.marble().velocity, sim.marble().angular_velocity);
+  if (!too_fast.empty()) throw std::runtime_error("snapshot: the marble's " + too_fast);
   const auto queued = in.get<std::uint64_t>();
   if (queued > kQueueCapacity)
     throw std::runtime_error("snapshot: more commands than a queue holds");
   std::deque<TiltCommand> queue(queued);
-  for (TiltCommand& c : queue) {
+  for (std::size_t k = 0; k < queue.size(); ++k) {
+    TiltCommand& c = queue[k];
+    const std::string which = "snapshot: queued command " + std::to_string(k) + "'s ";
     c.step = in.get<std::uint64_t>();
-    c.kind = static_cast<TiltCommand::Kind>(in.get<std::int32_t>());
+    const auto kind = in.get<std::int32_t>();
+    if (kind != static_cast<std::int32_t>(TiltCommand::Kind::Angles) &&
+        kind != static_cast<std::int32_t>(TiltCommand::Kind::Rates))
+      throw std::runtime_error(which + "kind " + std::to_string(kind) +
+                               " is neither angles (0) nor rates (1)");
+    c.kind = static_cast<TiltCommand::Kind>(kind);
     c.roll = in.get<double>();
     c.pitch = in.get<double>();
+    if (!std::isfinite(c.roll) || !std::isfinite(c.pitch))
+      throw std::runtime_error(which + "roll or pitch is not finite");
     if (version >= 2) c.order = in.get<std::uint64_t>();
   }
   bool flags[5];

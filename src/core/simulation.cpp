@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "marble_maze/rotation.h"
 
@@ -119,19 +120,38 @@ void Simulation::save(ByteWriter* out) const {
 }
 
 void Simulation::restore(ByteReader* in, bool with_origin) {
+  // Each value is checked as it is read, so that a state no simulation reaches (a bag's bytes
+  // gone bad, or made by hand) is refused, naming it, rather than stepped into NaN or nonsense.
+  const auto refuse = [](const std::string& why) {
+    throw std::runtime_error("snapshot: the marble's " + why);
+  };
   Marble m;
   m.position = in->vec3();
   m.velocity = in->vec3();
   m.angular_velocity = in->vec3();
+  if (!m.position.allFinite()) refuse("position is not finite");
+  if (!m.velocity.allFinite()) refuse("velocity is not finite");
+  if (!m.angular_velocity.allFinite()) refuse("angular velocity is not finite");
   const double w = in->get<double>(), x = in->get<double>(), y = in->get<double>(),
                z = in->get<double>();
   m.orientation = Quat(w, x, y, z);
-  m.phase = static_cast<MarblePhase>(in->get<std::int32_t>());
+  // (Each turn keeps it to unit length within rounding, some 1e-16.)
+  if (!(std::abs(m.orientation.squaredNorm() - 1) <= 1e-9))
+    refuse("orientation is not a unit quaternion");
+  const auto phase = in->get<std::int32_t>();
+  if (phase < static_cast<std::int32_t>(MarblePhase::Free) ||
+      phase > static_cast<std::int32_t>(MarblePhase::OffBoard))
+    refuse("phase " + std::to_string(phase) +
+           " is none of free (0), in a hole (1), at the goal (2), off the board (3)");
+  m.phase = static_cast<MarblePhase>(phase);
   m.contacts = in->get<std::int32_t>();
+  if (m.contacts < 0) refuse("count of contacts is negative");
   Board board = board_;
   board.restore(in);
   const Vec3 held = in->vec3();
+  if (!held.allFinite()) refuse("place on the board where it is held is not finite");
   const double time = in->get<double>();
+  if (!std::isfinite(time)) throw std::runtime_error("snapshot: its time is not finite");
   const auto steps = in->get<std::uint64_t>();
   // A state restored under the step it was saved with counts on from its origin, as the session
   // it was saved from does; under another step (a replay with other physics), or saved without

@@ -3,7 +3,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "marble_maze/maze_file.h"
 #include "marble_maze/session.h"
@@ -255,6 +258,126 @@ TEST(Session, ASavedStateRestoredElsewhereGoesOnBitForBit) {
   EXPECT_THROW(b.restore(std::vector<std::uint8_t>(saved.begin(), saved.end() - 3)),
                std::runtime_error);
   EXPECT_EQ(b.save(), a.save());  // a bad snapshot changed nothing
+}
+
+TEST(Session, ARestoredBoardMovesAsTheRestoringSessionsServoAndLimitsSay) {
+  // A state saved under one servo and restored under another (a replay with other physics:
+  // simulate --bag --set ...) moves as the restoring session's servo moves it, to targets within
+  // its tilt limit and at rates within its rate limit, not as the saved session's did.
+  Params slow;
+  slow.tilt_rate_limit = 0;
+  slow.tilt_response_time = 0.2;
+  slow.tilt_limit = 0.2;
+  Session a(test::flatFloor(20, 20, 0.01, placed(slow, {0, 0, kRadius})));
+  a.command({1, TiltCommand::Kind::Angles, 0.15, -0.01});
+  a.run(10);  // on its way to the target
+  Session same(test::flatFloor(20, 20, 0.01, placed(slow, {0, 0, kRadius})));
+  same.restore(a.save());
+  EXPECT_EQ(same.save(), a.save());  // under the same servo, the same state to the bit
+  Params quick = slow;
+  quick.tilt_response_time = 0.05;
+  Session b(test::flatFloor(20, 20, 0.01, placed(quick, {0, 0, kRadius})));
+  b.restore(a.save());
+  const double before = b.simulation().board().roll();
+  ASSERT_EQ(before, a.simulation().board().roll());
+  b.run(1);
+  // The first-order lag over one step, exact: a relative 1e-12 of the step's turn.
+  const double expected = before + (0.15 - before) * (1 - std::exp(-quick.step / 0.05));
+  EXPECT_NEAR(b.simulation().board().roll(), expected, 1e-12 * (expected - before));
+  // A lower tilt limit brings the saved target within it.
+  Params low = slow;
+  low.tilt_limit = 0.1;
+  Session c(test::flatFloor(20, 20, 0.01, placed(low, {0, 0, kRadius})));
+  c.restore(a.save());
+  c.run(3000);  // 15 response times: within 0.05 e^-15, 2e-8, of its target
+  EXPECT_NEAR(c.simulation().board().roll(), 0.1, 1e-7);
+  // And a lower rate limit slows saved rates to it.
+  a.command({20, TiltCommand::Kind::Rates, 0.5, 0});
+  a.run(15);
+  Params limited = slow;
+  limited.tilt_rate_limit = 0.1;
+  Session d(test::flatFloor(20, 20, 0.01, placed(limited, {0, 0, kRadius})));
+  d.restore(a.save());
+  const double start = d.simulation().board().roll();
+  d.run(10);
+  EXPECT_NEAR(d.simulation().board().roll() - start, 0.1 * 10 * limited.step, 1e-12);
+}
+
+// Where Session::save (snapshot version 2) puts some of its values, in bytes from the start.
+namespace layout {
+constexpr std::size_t kPosition = 4, kVelocity = 28, kSpin = 52, kOrientation = 76, kPhase = 108,
+                      kContacts = 112, kDrive = 116, kTargetRoll = 136, kRoll = 168,
+                      kRotation = 184, kBoardSpin = 256, kHeld = 280, kTime = 304, kQueued = 344,
+                      kFirstCommand = 352;  // its step (8 bytes), kind (4), roll, pitch, order
+}  // namespace layout
+
+template <typename T>
+T valueAt(const std::vector<std::uint8_t>& bytes, std::size_t at) {
+  T value;
+  std::memcpy(&value, bytes.data() + at, sizeof value);
+  return value;
+}
+
+template <typename T>
+std::vector<std::uint8_t> withValueAt(std::vector<std::uint8_t> bytes, std::size_t at, T value) {
+  std::memcpy(bytes.data() + at, &value, sizeof value);
+  return bytes;
+}
+
+TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
+  // A bag's snapshot may have gone bad or been made by hand: a state no session reaches is
+  // refused with the value it names, and the session stays as it was, rather than stepping into
+  // NaN or nonsense.
+  Session a(room());
+  a.command({5, TiltCommand::Kind::Angles, 0.1, -0.05});
+  a.command({2000, TiltCommand::Kind::Angles, -0.02, 0.03});  // still queued when saved
+  a.run(50);
+  const std::vector<std::uint8_t> saved = a.save();
+  // (The layout is the one saved: a change of the format fails here first.)
+  ASSERT_EQ(valueAt<double>(saved, layout::kPosition), a.simulation().marble().position.x());
+  ASSERT_EQ(valueAt<double>(saved, layout::kRoll), a.simulation().board().roll());
+  ASSERT_EQ(valueAt<double>(saved, layout::kRotation + 8), a.simulation().board().rotation()(1, 0));
+  ASSERT_EQ(valueAt<std::uint64_t>(saved, layout::kQueued), 1u);
+  ASSERT_EQ(valueAt<double>(saved, layout::kFirstCommand + 12), -0.02);
+  const double nan = std::nan(""), inf = INFINITY;
+  const struct {
+    std::vector<std::uint8_t> bytes;
+    const char* says;
+  } cases[] = {
+      {withValueAt(saved, layout::kPosition, nan), "the marble's position is not finite"},
+      {withValueAt(saved, layout::kVelocity + 8, -inf), "the marble's velocity is not finite"},
+      {withValueAt(saved, layout::kSpin + 16, nan), "the marble's angular velocity is not finite"},
+      {withValueAt(saved, layout::kVelocity, 1e9), "the marble's velocity: more than 1e5 radii"},
+      {withValueAt(saved, layout::kOrientation, 2.0), "orientation is not a unit quaternion"},
+      {withValueAt<std::int32_t>(saved, layout::kPhase, 4), "phase 4 is none of free (0)"},
+      {withValueAt<std::int32_t>(saved, layout::kPhase, -1), "phase -1 is none of"},
+      {withValueAt<std::int32_t>(saved, layout::kContacts, -2), "count of contacts is negative"},
+      {withValueAt<std::int32_t>(saved, layout::kDrive, 2), "the board's drive 2 is neither"},
+      {withValueAt(saved, layout::kTargetRoll, nan), "the board's target roll is not finite"},
+      {withValueAt(saved, layout::kRoll, 2.0), "the board's roll or pitch is beyond a quarter"},
+      {withValueAt(saved, layout::kRoll, 0.1 + 1e-15), "rotation is not that of its roll and"},
+      {withValueAt(saved, layout::kRotation + 8, 0.5), "rotation is not that of its roll and"},
+      {withValueAt(saved, layout::kBoardSpin, inf), "the board's angular velocity is not finite"},
+      {withValueAt(saved, layout::kHeld + 8, nan), "where it is held is not finite"},
+      {withValueAt(saved, layout::kTime, nan), "its time is not finite"},
+      {withValueAt<std::int32_t>(saved, layout::kFirstCommand + 8, 7),
+       "queued command 0's kind 7 is neither angles (0) nor rates (1)"},
+      {withValueAt(saved, layout::kFirstCommand + 20, nan),
+       "queued command 0's roll or pitch is not finite"},
+  };
+  Session b(room());
+  b.restore(saved);
+  for (const auto& c : cases) {
+    try {
+      b.restore(c.bytes);
+      ADD_FAILURE() << "accepted, though " << c.says;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("snapshot: ")), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos)
+          << "says \"" << e.what() << "\", not \"" << c.says << "\"";
+    }
+    EXPECT_EQ(b.save(), saved) << c.says;  // a refused snapshot changed nothing
+  }
 }
 
 TEST(Session, ParamsReadBackExactlyFromTheirText) {

@@ -2,6 +2,8 @@
 // top surface, driven by target angles or by tilt rates, within a tilt and a tilt-rate limit.
 #pragma once
 
+#include <array>
+
 #include "marble_maze/bytes.h"
 #include "marble_maze/geometry.h"
 #include "marble_maze/params.h"
@@ -51,13 +53,20 @@ class Board {
   /// Everything that changes as the board moves (not its limits), bit for bit.
   void save(ByteWriter* out) const;
   /// Back to a saved state, which then moves under this board's limits and servo (targets and
-  /// rates brought within them). Throws std::runtime_error naming a value no board has (not
-  /// finite, beyond a quarter turn, a rotation not its angles'), changing nothing then.
+  /// rates brought within them). Throws std::runtime_error naming a value no board has (a drive
+  /// of neither kind, a value not finite, an angle beyond a quarter turn, a rotation not its
+  /// angles'), changing nothing then.
   void restore(ByteReader* in);
 
  private:
   enum class Drive { Target, Rate };
 
+  /// A value save() writes after the drive, by name (for restore's messages).
+  struct SavedValue {
+    const char* name;
+    double Board::*member;
+  };
+  static const std::array<SavedValue, 8>& savedValues();
   /// Targets and rates within the limits.
   void keepWithinLimits();
   /// The fraction of the way to its target the servo covers in h seconds (its first-order lag).

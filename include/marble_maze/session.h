@@ -78,8 +78,10 @@ class Session {
   /// Every value the next step depends on but the scene (maze and physics): the simulation's
   /// state, the queued commands, the pause and the timed actions' clocks, bit for bit.
   std::vector<std::uint8_t> save() const;
-  /// Back to a saved state (of a session with the same scene); throws std::runtime_error on
-  /// bytes that are not a state, changing nothing.
+  /// Back to a saved state (of a session with the same maze; under other physics the board moves
+  /// under this session's servo and limits). Throws std::runtime_error ("snapshot: ...", naming
+  /// the value) on bytes that are not a state or hold a value no session saves (not finite, out
+  /// of range, commands out of order), changing nothing.
   void restore(const std::vector<std::uint8_t>& bytes);
   /// A fingerprint of save(): equal states have equal fingerprints.
   std::uint64_t fingerprint() const;

@@ -71,7 +71,8 @@ class Simulation {
   /// The state as bytes, bit for bit (the scene, maze and physics, is not in them).
   void save(ByteWriter* out) const;
   /// `with_origin`: the state was saved with the time and steps its time counts from (a session
-  /// snapshot of version 2 on).
+  /// snapshot of version 2 on). Throws std::runtime_error naming a value no simulation saves
+  /// (the marble's or the board's: not finite, out of range), changing nothing.
   void restore(ByteReader* in, bool with_origin = true);
   /// Why the marble cannot be placed at a board-frame position (inside a tile, off the board),
   /// or "" when it can.

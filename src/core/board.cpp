@@ -1,10 +1,12 @@
 #include "marble_maze/board.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "marble_maze/rotation.h"
 
@@ -35,43 +37,51 @@ void Board::keepWithinLimits() {
   pitch_rate_ = clampRate(pitch_rate_);
 }
 
+const std::array<Board::SavedValue, 8>& Board::savedValues() {
+  static const std::array<SavedValue, 8> values = {{{"servo step", &Board::approach_step_},
+                                                    {"servo approach", &Board::approach_},
+                                                    {"target roll", &Board::target_roll_},
+                                                    {"target pitch", &Board::target_pitch_},
+                                                    {"roll rate", &Board::roll_rate_},
+                                                    {"pitch rate", &Board::pitch_rate_},
+                                                    {"roll", &Board::roll_},
+                                                    {"pitch", &Board::pitch_}}};
+  return values;
+}
+
 void Board::save(ByteWriter* out) const {
   out->put(static_cast<std::int32_t>(drive_));
-  for (double v : {approach_step_, approach_, target_roll_, target_pitch_, roll_rate_, pitch_rate_,
-                   roll_, pitch_})
-    out->put(v);
+  for (const SavedValue& v : savedValues()) out->put(this->*v.member);
   out->put(rotation_);
   out->put(angular_velocity_);
 }
 
 void Board::restore(ByteReader* in) {
   Board next = *this;  // (this board changes only once all of the state is read and sound)
+  const auto refuse = [](const std::string& why) {
+    throw std::runtime_error("snapshot: the board's " + why);
+  };
   const auto drive = in->get<std::int32_t>();
   if (drive != static_cast<std::int32_t>(Drive::Target) &&
       drive != static_cast<std::int32_t>(Drive::Rate))
-    throw std::runtime_error("snapshot: the board's drive " + std::to_string(drive) +
-                             " is neither a target (0) nor rates (1)");
+    refuse("drive " + std::to_string(drive) + " is neither a target (0) nor rates (1)");
   next.drive_ = static_cast<Drive>(drive);
-  const char* names[] = {"servo step", "servo approach", "target roll", "target pitch",
-                         "roll rate",  "pitch rate",     "roll",        "pitch"};
-  double* values[] = {&next.approach_step_, &next.approach_,  &next.target_roll_,
-                      &next.target_pitch_,  &next.roll_rate_, &next.pitch_rate_,
-                      &next.roll_,          &next.pitch_};
-  for (int k = 0; k < 8; ++k) {
-    *values[k] = in->get<double>();
-    if (!std::isfinite(*values[k]))
-      throw std::runtime_error(std::string("snapshot: the board's ") + names[k] + " is not finite");
+  for (const SavedValue& v : savedValues()) {
+    next.*v.member = in->get<double>();
+    if (!std::isfinite(next.*v.member)) refuse(std::string(v.name) + " is not finite");
   }
-  if (!(std::abs(next.roll_) <= kQuarterTurn && std::abs(next.pitch_) <= kQuarterTurn))
-    throw std::runtime_error("snapshot: the board's roll or pitch is beyond a quarter turn");
-  // The rotation is always its angles' (reset and advance set them together): any other is not
-  // a board's state.
-  next.rotation_ = in->mat3();
-  if (next.rotation_ != rotationFor(next.roll_, next.pitch_))
-    throw std::runtime_error("snapshot: the board's rotation is not that of its roll and pitch");
+  for (const auto& [name, angle] : {std::pair{"roll", next.roll_}, {"pitch", next.pitch_}})
+    if (!(std::abs(angle) <= kQuarterTurn))
+      refuse(std::string(name) + " " + exactText(angle) + " rad is beyond a quarter turn");
+  // The rotation is always its angles' (reset and advance set them together), taken anew here:
+  // the same to the bit, and the same to rounding as a build whose rotationFor rounded otherwise
+  // saved it (an older bag's). A rotation further from them is not a board's state.
+  const Mat3 saved_rotation = in->mat3();
+  next.rotation_ = rotationFor(next.roll_, next.pitch_);
+  if (!((saved_rotation - next.rotation_).cwiseAbs().maxCoeff() <= 1e-12))
+    refuse("rotation is not that of its roll and pitch");
   next.angular_velocity_ = in->vec3();
-  if (!next.angular_velocity_.allFinite())
-    throw std::runtime_error("snapshot: the board's angular velocity is not finite");
+  if (!next.angular_velocity_.allFinite()) refuse("angular velocity is not finite");
   // Saved under other limits or another servo (a replay with other physics), it moves under
   // this board's: its targets and rates within them, its servo's approach over the saved step
   // worked out anew (the same to the bit under the same servo, so the state is unchanged).

@@ -14,11 +14,17 @@ std::uint64_t Session::stepsOf(double seconds) const {
   return std::max<std::uint64_t>(1, std::llround(seconds / sim_.params().step));
 }
 
+namespace {
+
+/// The queue's order: by step, and within a step by order (then by arrival).
+bool actsBefore(const TiltCommand& a, const TiltCommand& b) {
+  return a.step < b.step || (a.step == b.step && a.order < b.order);
+}
+
+}  // namespace
+
 bool Session::command(const TiltCommand& command) {
-  const auto later = std::upper_bound(
-      queue_.begin(), queue_.end(), command, [](const TiltCommand& a, const TiltCommand& b) {
-        return a.step < b.step || (a.step == b.step && a.order < b.order);
-      });
+  const auto later = std::upper_bound(queue_.begin(), queue_.end(), command, actsBefore);
   queue_.insert(later, command);
   if (queue_.size() <= kQueueCapacity) return true;
   queue_.pop_back();
@@ -79,28 +85,19 @@ void Session::reset() {
   commanded_ = false;
 }
 
-namespace {
-
-/// Why a marble of these physics cannot move at this velocity and spin (finite), naming which,
-/// or "" when it can: faster than a step can resolve.
-std::string whyTooFast(const Params& p, const Vec3& velocity, const Vec3& spin) {
-  if (velocity.norm() > p.mostSpeed())
-    return "velocity: more than 1e5 radii a step, which a step cannot resolve";
-  if (spin.norm() * p.marble_radius > p.mostSpeed())  // its surface as fast
-    return "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
-           "resolve";
-  return "";
-}
-
-}  // namespace
-
 void Session::place(const Vec3& position_in_board, const Vec3& velocity, const Vec3& spin) {
   const std::string why = sim_.whyNotPlaceable(position_in_board);
   if (!why.empty()) throw std::invalid_argument("position: " + why);
   if (!velocity.allFinite()) throw std::invalid_argument("velocity: not finite");
   if (!spin.allFinite()) throw std::invalid_argument("angular_velocity: not finite");
-  const std::string too_fast = whyTooFast(sim_.params(), velocity, spin);
-  if (!too_fast.empty()) throw std::invalid_argument(too_fast);
+  const Params& p = sim_.params();
+  if (velocity.norm() > p.mostSpeed())
+    throw std::invalid_argument(
+        "velocity: more than 1e5 radii a step, which a step cannot resolve");
+  if (spin.norm() * p.marble_radius > p.mostSpeed())  // its surface as fast
+    throw std::invalid_argument(
+        "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
+        "resolve");
   sim_.placeMarble(position_in_board, velocity, spin);
   finished_ = false;
 }
@@ -154,9 +151,6 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
     throw std::runtime_error("snapshot: not a state of this version");
   Simulation sim = sim_;
   sim.restore(&in, version >= 2);
-  const std::string too_fast =
-      whyTooFast(sim.params(), sim.marble().velocity, sim.marble().angular_velocity);
-  if (!too_fast.empty()) throw std::runtime_error("snapshot: the marble's " + too_fast);
   const auto queued = in.get<std::uint64_t>();
   if (queued > kQueueCapacity)
     throw std::runtime_error("snapshot: more commands than a queue holds");
@@ -177,6 +171,8 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
       throw std::runtime_error(which + "roll or pitch is not finite");
     if (version >= 2) c.order = in.get<std::uint64_t>();
   }
+  if (!std::is_sorted(queue.begin(), queue.end(), actsBefore))
+    throw std::runtime_error("snapshot: the queued commands are not in the order they act in");
   bool flags[5];
   for (bool& flag : flags) flag = in.get<std::uint8_t>() != 0;
   const auto last_command = in.get<std::uint64_t>();

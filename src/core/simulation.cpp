@@ -132,12 +132,24 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
   if (!m.position.allFinite()) refuse("position is not finite");
   if (!m.velocity.allFinite()) refuse("velocity is not finite");
   if (!m.angular_velocity.allFinite()) refuse("angular velocity is not finite");
+  // As place and start_velocity refuse it: beyond what a step resolves the physics is not
+  // answerable (a spin of 1e220 rad/s turns the orientation to NaN). A session's own marble
+  // goes that fast only under extreme physics (100 g over a 100 m fall, 0.1 s steps).
+  const double most = params_.mostSpeed();
+  if (m.velocity.stableNorm() > most)
+    refuse("speed " + exactText(m.velocity.stableNorm()) + " m/s is more than the " +
+           exactText(most) + " m/s (1e5 radii a step) that a step resolves");
+  if (m.angular_velocity.stableNorm() * params_.marble_radius > most)
+    refuse("spin " + exactText(m.angular_velocity.stableNorm()) +
+           " rad/s turns its surface faster than the " + exactText(most) +
+           " m/s (1e5 radii a step) that a step resolves");
   const double w = in->get<double>(), x = in->get<double>(), y = in->get<double>(),
                z = in->get<double>();
   m.orientation = Quat(w, x, y, z);
   // (Each turn keeps it to unit length within rounding, some 1e-16.)
   if (!(std::abs(m.orientation.squaredNorm() - 1) <= 1e-9))
-    refuse("orientation is not a unit quaternion");
+    refuse("orientation is not a unit quaternion (its squared norm is " +
+           std::to_string(m.orientation.squaredNorm()) + ")");
   const auto phase = in->get<std::int32_t>();
   if (phase < static_cast<std::int32_t>(MarblePhase::Free) ||
       phase > static_cast<std::int32_t>(MarblePhase::OffBoard))
@@ -151,7 +163,7 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
   const Vec3 held = in->vec3();
   if (!held.allFinite()) refuse("place on the board where it is held is not finite");
   const double time = in->get<double>();
-  if (!std::isfinite(time)) throw std::runtime_error("snapshot: its time is not finite");
+  if (!std::isfinite(time)) throw std::runtime_error("snapshot: the simulated time is not finite");
   const auto steps = in->get<std::uint64_t>();
   // A state restored under the step it was saved with counts on from its origin, as the session
   // it was saved from does; under another step (a replay with other physics), or saved without
@@ -547,6 +559,7 @@ void Simulation::hold(MarblePhase phase, EventKind kind, const Index3& tile, dou
   events_.push_back({time, kind, tile, marble_.velocity.norm()});
   marble_.phase = phase;
   if (!marble_.position.allFinite()) marble_.position = Vec3::Zero();  // the pivot
+  if (!marble_.orientation.coeffs().allFinite()) marble_.orientation = Quat::Identity();
   held_in_grid_ = frame_.toGrid(marble_.position);
   marble_.velocity = frame_.surfaceVelocity(marble_.position);
   marble_.angular_velocity.setZero();

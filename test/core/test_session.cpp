@@ -308,7 +308,7 @@ namespace layout {
 constexpr std::size_t kPosition = 4, kVelocity = 28, kSpin = 52, kOrientation = 76, kPhase = 108,
                       kContacts = 112, kDrive = 116, kTargetRoll = 136, kRoll = 168,
                       kRotation = 184, kBoardSpin = 256, kHeld = 280, kTime = 304, kQueued = 344,
-                      kFirstCommand = 352;  // its step (8 bytes), kind (4), roll, pitch, order
+                      kFirstCommand = 352;  // its step (8 bytes), kind (4), roll, pitch, order: 36
 }  // namespace layout
 
 template <typename T>
@@ -331,13 +331,15 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
   Session a(room());
   a.command({5, TiltCommand::Kind::Angles, 0.1, -0.05});
   a.command({2000, TiltCommand::Kind::Angles, -0.02, 0.03});  // still queued when saved
+  a.command({3000, TiltCommand::Kind::Rates, 0.1, 0});
   a.run(50);
   const std::vector<std::uint8_t> saved = a.save();
   // (The layout is the one saved: a change of the format fails here first.)
   ASSERT_EQ(valueAt<double>(saved, layout::kPosition), a.simulation().marble().position.x());
   ASSERT_EQ(valueAt<double>(saved, layout::kRoll), a.simulation().board().roll());
   ASSERT_EQ(valueAt<double>(saved, layout::kRotation + 8), a.simulation().board().rotation()(1, 0));
-  ASSERT_EQ(valueAt<std::uint64_t>(saved, layout::kQueued), 1u);
+  ASSERT_EQ(valueAt<std::uint64_t>(saved, layout::kQueued), 2u);
+  ASSERT_EQ(valueAt<std::uint64_t>(saved, layout::kFirstCommand + 36), 3000u);
   ASSERT_EQ(valueAt<double>(saved, layout::kFirstCommand + 12), -0.02);
   const double nan = std::nan(""), inf = INFINITY;
   const struct {
@@ -347,23 +349,26 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
       {withValueAt(saved, layout::kPosition, nan), "the marble's position is not finite"},
       {withValueAt(saved, layout::kVelocity + 8, -inf), "the marble's velocity is not finite"},
       {withValueAt(saved, layout::kSpin + 16, nan), "the marble's angular velocity is not finite"},
-      {withValueAt(saved, layout::kVelocity, 1e9), "the marble's velocity: more than 1e5 radii"},
-      {withValueAt(saved, layout::kOrientation, 2.0), "orientation is not a unit quaternion"},
+      {withValueAt(saved, layout::kVelocity, 1e9), "the marble's speed 1e+09 m/s is more than"},
+      {withValueAt(saved, layout::kSpin, 1e9), "the marble's spin 1e+09 rad/s turns its surface"},
+      {withValueAt(saved, layout::kOrientation, 2.0), "orientation is not a unit quaternion (its"},
       {withValueAt<std::int32_t>(saved, layout::kPhase, 4), "phase 4 is none of free (0)"},
       {withValueAt<std::int32_t>(saved, layout::kPhase, -1), "phase -1 is none of"},
       {withValueAt<std::int32_t>(saved, layout::kContacts, -2), "count of contacts is negative"},
       {withValueAt<std::int32_t>(saved, layout::kDrive, 2), "the board's drive 2 is neither"},
       {withValueAt(saved, layout::kTargetRoll, nan), "the board's target roll is not finite"},
-      {withValueAt(saved, layout::kRoll, 2.0), "the board's roll or pitch is beyond a quarter"},
-      {withValueAt(saved, layout::kRoll, 0.1 + 1e-15), "rotation is not that of its roll and"},
+      {withValueAt(saved, layout::kRoll, 2.0), "the board's roll 2 rad is beyond a quarter turn"},
+      {withValueAt(saved, layout::kRoll, 0.1 + 1e-6), "rotation is not that of its roll and"},
       {withValueAt(saved, layout::kRotation + 8, 0.5), "rotation is not that of its roll and"},
       {withValueAt(saved, layout::kBoardSpin, inf), "the board's angular velocity is not finite"},
       {withValueAt(saved, layout::kHeld + 8, nan), "where it is held is not finite"},
-      {withValueAt(saved, layout::kTime, nan), "its time is not finite"},
+      {withValueAt(saved, layout::kTime, nan), "the simulated time is not finite"},
       {withValueAt<std::int32_t>(saved, layout::kFirstCommand + 8, 7),
        "queued command 0's kind 7 is neither angles (0) nor rates (1)"},
       {withValueAt(saved, layout::kFirstCommand + 20, nan),
        "queued command 0's roll or pitch is not finite"},
+      {withValueAt<std::uint64_t>(saved, layout::kFirstCommand, 5000),
+       "the queued commands are not in the order they act in"},
   };
   Session b(room());
   b.restore(saved);

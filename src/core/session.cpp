@@ -91,10 +91,10 @@ void Session::place(const Vec3& position_in_board, const Vec3& velocity, const V
   if (!velocity.allFinite()) throw std::invalid_argument("velocity: not finite");
   if (!spin.allFinite()) throw std::invalid_argument("angular_velocity: not finite");
   const Params& p = sim_.params();
-  if (velocity.norm() > p.mostSpeed())
+  if (velocity.stableNorm() > p.mostSpeed())
     throw std::invalid_argument(
         "velocity: more than 1e5 radii a step, which a step cannot resolve");
-  if (spin.norm() * p.marble_radius > p.mostSpeed())  // its surface as fast
+  if (spin.stableNorm() * p.marble_radius > p.mostSpeed())  // its surface as fast
     throw std::invalid_argument(
         "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
         "resolve");

@@ -125,43 +125,49 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
   const auto refuse = [](const std::string& why) {
     throw std::runtime_error("snapshot: the marble's " + why);
   };
+  // Farther than any flight reaches (a marble at the fastest speed a step resolves would fly
+  // for 1e144 s), and near enough that every square the step takes stays finite.
+  const auto near = [](const Vec3& v) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= 1e150; };
   Marble m;
   m.position = in->vec3();
   m.velocity = in->vec3();
   m.angular_velocity = in->vec3();
-  if (!m.position.allFinite()) refuse("position is not finite");
+  if (!near(m.position)) refuse("position is not finite, or more than 1e150 m away");
   if (!m.velocity.allFinite()) refuse("velocity is not finite");
   if (!m.angular_velocity.allFinite()) refuse("angular velocity is not finite");
-  // As place and start_velocity refuse it: beyond what a step resolves the physics is not
-  // answerable (a spin of 1e220 rad/s turns the orientation to NaN). A session's own marble
-  // goes that fast only under extreme physics (100 g over a 100 m fall, 0.1 s steps).
-  const double most = params_.mostSpeed();
-  if (m.velocity.stableNorm() > most)
-    refuse("speed " + exactText(m.velocity.stableNorm()) + " m/s is more than the " +
-           exactText(most) + " m/s (1e5 radii a step) that a step resolves");
-  if (m.angular_velocity.stableNorm() * params_.marble_radius > most)
-    refuse("spin " + exactText(m.angular_velocity.stableNorm()) +
-           " rad/s turns its surface faster than the " + exactText(most) +
-           " m/s (1e5 radii a step) that a step resolves");
   const double w = in->get<double>(), x = in->get<double>(), y = in->get<double>(),
                z = in->get<double>();
   m.orientation = Quat(w, x, y, z);
   // (Each turn keeps it to unit length within rounding, some 1e-16.)
   if (!(std::abs(m.orientation.squaredNorm() - 1) <= 1e-9))
     refuse("orientation is not a unit quaternion (its squared norm is " +
-           std::to_string(m.orientation.squaredNorm()) + ")");
+           exactText(m.orientation.squaredNorm()) + ")");
   const auto phase = in->get<std::int32_t>();
   if (phase < static_cast<std::int32_t>(MarblePhase::Free) ||
       phase > static_cast<std::int32_t>(MarblePhase::OffBoard))
     refuse("phase " + std::to_string(phase) +
            " is none of free (0), in a hole (1), at the goal (2), off the board (3)");
   m.phase = static_cast<MarblePhase>(phase);
+  // A free marble moves as fast as place and start_velocity allow it, at most: beyond what a
+  // step resolves the physics is not answerable (a spin of 3e217 rad/s turned the orientation to
+  // NaN). A session's own marble goes that fast only under extreme physics (100 g over a 100 m
+  // fall, 0.1 s steps). (A held one moves with the board, as fast as its far place makes it.)
+  const double most = params_.mostSpeed();
+  if (m.phase == MarblePhase::Free && m.velocity.stableNorm() > most)
+    refuse("speed " + exactText(m.velocity.stableNorm()) + " m/s is more than the " +
+           exactText(most) + " m/s (1e5 radii a step) that a step resolves");
+  if (m.phase == MarblePhase::Free &&
+      m.angular_velocity.stableNorm() * params_.marble_radius > most)
+    refuse("spin " + exactText(m.angular_velocity.stableNorm()) +
+           " rad/s turns its surface faster than the " + exactText(most) +
+           " m/s (1e5 radii a step) that a step resolves");
   m.contacts = in->get<std::int32_t>();
   if (m.contacts < 0) refuse("count of contacts is negative");
   Board board = board_;
   board.restore(in);
   const Vec3 held = in->vec3();
-  if (!held.allFinite()) refuse("place on the board where it is held is not finite");
+  if (!near(held))
+    refuse("place on the board where it is held is not finite, or more than 1e150 m away");
   const double time = in->get<double>();
   if (!std::isfinite(time)) throw std::runtime_error("snapshot: the simulated time is not finite");
   const auto steps = in->get<std::uint64_t>();

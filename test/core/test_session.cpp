@@ -347,6 +347,7 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
     const char* says;
   } cases[] = {
       {withValueAt(saved, layout::kPosition, nan), "the marble's position is not finite"},
+      {withValueAt(saved, layout::kPosition + 8, -1e200), "or more than 1e150 m away"},
       {withValueAt(saved, layout::kVelocity + 8, -inf), "the marble's velocity is not finite"},
       {withValueAt(saved, layout::kSpin + 16, nan), "the marble's angular velocity is not finite"},
       {withValueAt(saved, layout::kVelocity, 1e9), "the marble's speed 1e+09 m/s is more than"},
@@ -362,6 +363,7 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
       {withValueAt(saved, layout::kRotation + 8, 0.5), "rotation is not that of its roll and"},
       {withValueAt(saved, layout::kBoardSpin, inf), "the board's angular velocity is not finite"},
       {withValueAt(saved, layout::kHeld + 8, nan), "where it is held is not finite"},
+      {withValueAt(saved, layout::kHeld, 1.7e308), "where it is held is not finite, or more"},
       {withValueAt(saved, layout::kTime, nan), "the simulated time is not finite"},
       {withValueAt<std::int32_t>(saved, layout::kFirstCommand + 8, 7),
        "queued command 0's kind 7 is neither angles (0) nor rates (1)"},

@@ -29,6 +29,7 @@ import re
 import shutil
 import signal
 import socket
+import struct
 import subprocess
 import sys
 import tempfile
@@ -178,7 +179,7 @@ class RecordReplayTest(unittest.TestCase):
         print("events: the re-run's %d are the recorded ones, the recorder having missed the "
               "last %d" % (len(kept), missed))
 
-    def test_6_another_step_keeps_the_recorded_times_and_a_bag_lacking_a_topic_is_refused(self):
+    def test_6_another_step_keeps_the_recorded_times_and_a_bad_bag_is_refused(self):
 
         def board(*flags):
             """(t, roll, pitch) of each row of a re-simulation, and when its marble first
@@ -229,6 +230,22 @@ class RecordReplayTest(unittest.TestCase):
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("no marble_maze/SimInput (inputs)", run.stderr)
+        # A snapshot whose bytes went bad (the marble's phase, at byte 108 of Session::save, out
+        # of range): refused, naming the value, before anything is simulated.
+        bad_snapshot = os.path.join(self.dir, "bad_snapshot.bag")
+        with rosbag.Bag(self.session) as bag, rosbag.Bag(bad_snapshot, "w") as out:
+            for topic, m, t in bag.read_messages():
+                if m._type == "marble_maze/SimSnapshot":
+                    state = bytearray(m.state)
+                    self.assertIn(struct.unpack_from("<i", state, 108)[0], range(4))  # a phase
+                    struct.pack_into("<i", state, 108, 4)
+                    m.state = bytes(state)
+                out.write(topic, m, t)
+        run = subprocess.run([SIMULATE, "--bag", bad_snapshot], capture_output=True, text=True,
+                             timeout=120)
+        self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
+        self.assertIn("--bag: snapshot: the marble's phase 4 is none of free (0)", run.stderr)
+        self.assertEqual(run.stdout, "")
         # The first snapshot recorded before the scene (two latched messages of one instant come
         # in either order, as a lockstep node's do): the replay starts from the next snapshot.
         swapped = os.path.join(self.dir, "snapshot_first.bag")

@@ -72,6 +72,13 @@ Simulation::Simulation(const Scene& scene)
 
 void Simulation::setParams(const Params& params) {
   validate(params);
+  // A free marble stays one a step resolves, as place requires and a snapshot's restore checks.
+  const double speed = std::max(marble_.velocity.stableNorm(),
+                                marble_.angular_velocity.stableNorm() * params.marble_radius);
+  if (marble_.phase == MarblePhase::Free && speed > params.mostSpeed())
+    throw ParamError("step/marble_radius: the marble moves at " + exactText(speed) +
+                     " m/s, more than the " + exactText(params.mostSpeed()) +
+                     " m/s (1e5 radii a step) that a step would resolve");
   params_ = params;
   board_.setLimits(params_);
   solver_ = ContactSolver(params_);

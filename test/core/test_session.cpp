@@ -387,6 +387,27 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
   }
 }
 
+TEST(Session, NewPhysicsUnderWhichTheFreeMarbleIsTooFastAreRefused) {
+  // 5e5 m/s is within what a 1 ms step resolves with a 6 mm marble (6e5 m/s), not a 2 ms one:
+  // the marble would be a state no step resolves, and no snapshot of it would restore.
+  Session s(room());
+  s.place({0, 0, 0.05}, {5e5, 0, 0}, Vec3::Zero());
+  Params longer = s.simulation().params();
+  longer.step = 0.002;
+  try {
+    s.setParams(longer);
+    ADD_FAILURE() << "accepted";
+  } catch (const ParamError& e) {
+    EXPECT_NE(std::string(e.what()).find("step/marble_radius: the marble moves at 500000 m/s"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(s.simulation().params().step, 0.001);  // unchanged
+  longer.step = 0.0011;                            // 5.45e5 m/s resolved: taken
+  s.setParams(longer);
+  EXPECT_EQ(s.simulation().params().step, 0.0011);
+}
+
 TEST(Session, ParamsReadBackExactlyFromTheirText) {
   Params p;
   setParam(p, "preset", "fast");

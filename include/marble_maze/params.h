@@ -64,6 +64,9 @@ struct Params {
   /// The fastest a step resolves (m/s): 1e5 radii a step. The sweep walks a step's path in at
   /// most a million pieces of a radius; a faster marble could pass a wall unseen.
   double mostSpeed() const { return 1e5 * marble_radius / step; }
+  /// "" for a speed (m/s) a step resolves, else why not: "S m/s is more than the M m/s (1e5
+  /// radii a step) that a step resolves".
+  std::string whyTooFast(double speed) const;
 };
 
 /// A bad key or value; the message names the key and what was expected.

@@ -13,6 +13,12 @@
 
 namespace marble_maze {
 /// The shortest text that reads back as exactly the same double.
+std::string Params::whyTooFast(double speed) const {
+  if (!(speed > mostSpeed())) return "";
+  return exactText(speed) + " m/s is more than the " + exactText(mostSpeed()) +
+         " m/s (1e5 radii a step) that a step resolves";
+}
+
 std::string exactText(double value) {
   char text[32];
   for (int digits = 6; digits <= 17; ++digits) {
@@ -374,11 +380,8 @@ void validate(const Params& p) {
                      " m/s, which semi_implicit_euler needs; raise it, shorten the step or leave "
                      "it auto");
   }
-  if (p.start_velocity.stableNorm() > p.mostSpeed()) {
-    throw ParamError("start_velocity: " + exactText(p.start_velocity.stableNorm()) +
-                     " m/s is more than the " + exactText(p.mostSpeed()) +
-                     " m/s (1e5 radii a step) that a step resolves");
-  }
+  const std::string too_fast = p.whyTooFast(p.start_velocity.stableNorm());
+  if (!too_fast.empty()) throw ParamError("start_velocity: " + too_fast);
   if (std::abs(p.initial_roll) > p.tilt_limit || std::abs(p.initial_pitch) > p.tilt_limit)
     throw ParamError("initial_roll/initial_pitch: beyond tilt_limit " + format(p.tilt_limit));
 }

@@ -34,6 +34,17 @@ constexpr double kMostTurn = 0.05;
 // without overshooting (explicit Euler's limit is 1); beyond it a step is cut into more substeps.
 constexpr double kMostDragDecay = 0.5;
 
+/// Why a free marble moves faster than a step of `params` resolves, as place and start_velocity
+/// refuse it, or "" (a held one moves with the board, as fast as its place makes it).
+std::string whyTooFast(const Marble& m, const Params& params) {
+  if (m.phase != MarblePhase::Free) return "";
+  const std::string linear = params.whyTooFast(m.velocity.stableNorm());
+  if (!linear.empty()) return "speed " + linear;
+  const std::string surface =
+      params.whyTooFast(m.angular_velocity.stableNorm() * params.marble_radius);
+  return surface.empty() ? "" : "surface's speed from its spin, " + surface;
+}
+
 }  // namespace
 
 Simulation::Simulation(const Scene& scene)
@@ -73,12 +84,8 @@ Simulation::Simulation(const Scene& scene)
 void Simulation::setParams(const Params& params) {
   validate(params);
   // A free marble stays one a step resolves, as place requires and a snapshot's restore checks.
-  const double speed = std::max(marble_.velocity.stableNorm(),
-                                marble_.angular_velocity.stableNorm() * params.marble_radius);
-  if (marble_.phase == MarblePhase::Free && speed > params.mostSpeed())
-    throw ParamError("step/marble_radius: the marble moves at " + exactText(speed) +
-                     " m/s, more than the " + exactText(params.mostSpeed()) +
-                     " m/s (1e5 radii a step) that a step would resolve");
+  const std::string too_fast = whyTooFast(marble_, params);
+  if (!too_fast.empty()) throw ParamError("step/marble_radius: the marble's " + too_fast);
   params_ = params;
   board_.setLimits(params_);
   solver_ = ContactSolver(params_);
@@ -155,19 +162,11 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
     refuse("phase " + std::to_string(phase) +
            " is none of free (0), in a hole (1), at the goal (2), off the board (3)");
   m.phase = static_cast<MarblePhase>(phase);
-  // A free marble moves as fast as place and start_velocity allow it, at most: beyond what a
-  // step resolves the physics is not answerable (a spin of 3e217 rad/s turned the orientation to
-  // NaN). A session's own marble goes that fast only under extreme physics (100 g over a 100 m
-  // fall, 0.1 s steps). (A held one moves with the board, as fast as its far place makes it.)
-  const double most = params_.mostSpeed();
-  if (m.phase == MarblePhase::Free && m.velocity.stableNorm() > most)
-    refuse("speed " + exactText(m.velocity.stableNorm()) + " m/s is more than the " +
-           exactText(most) + " m/s (1e5 radii a step) that a step resolves");
-  if (m.phase == MarblePhase::Free &&
-      m.angular_velocity.stableNorm() * params_.marble_radius > most)
-    refuse("spin " + exactText(m.angular_velocity.stableNorm()) +
-           " rad/s turns its surface faster than the " + exactText(most) +
-           " m/s (1e5 radii a step) that a step resolves");
+  // Beyond what a step resolves the physics is not answerable (a spin of 3e217 rad/s turned the
+  // orientation to NaN). A session's own marble goes that fast only under extreme physics (100 g
+  // over a 100 m fall, 0.1 s steps).
+  const std::string too_fast = whyTooFast(m, params_);
+  if (!too_fast.empty()) refuse(too_fast);
   m.contacts = in->get<std::int32_t>();
   if (m.contacts < 0) refuse("count of contacts is negative");
   Board board = board_;

@@ -64,6 +64,8 @@ class ContactSolver {
   /// three stick: true with body, outcomes and frictions set; false, changing nothing, otherwise.
   bool solveTriple(const std::vector<Contact>& contacts, double restitution, Velocities* body,
                    std::vector<ContactOutcome>* outcomes);
+  /// constrain() for one contact, as iterate() and measureWork() work it out, to the bit.
+  void constrainOne(const Contact& c, Velocities* body, ContactOutcome* outcome);
   void resistRolling(const std::vector<Contact>& contacts, Velocities* body) const;
   void measureWork(const std::vector<Contact>& contacts,
                    const std::vector<ContactOutcome>& outcomes);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "marble_maze/contact_solver.h"
 #include "marble_maze/simulation.h"
@@ -384,6 +385,61 @@ TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
   EXPECT_LT((body.linear - board_spin.cross(centre)).norm(), 1e-15);
   EXPECT_LT((body.angular - board_spin).norm() * p.marble_radius, 1e-15);
   for (const ContactOutcome& o : outcomes) EXPECT_GT(o.normal_impulse, 0);  // all three press
+}
+
+TEST(Impact, OneContactIsConstrainedAsTheSweepsSolveItToTheBit) {
+  // constrain() solves one contact directly (a marble rolling on a floor: most steps); impact()
+  // still takes it through the Gauss-Seidel sweeps. Below the bounce threshold both ask the
+  // same of it (leave at zero normal speed, friction within its cone), so they must agree to
+  // the bit: velocities, impulse and the surface's work. Over normals of faces and of edges and
+  // corners, moving surfaces, marbles pressing, leaving, sticking and slipping, both models.
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const auto vec = [&](double size) -> Vec3 {  // (a Vec3: not an expression of a temporary)
+    return Vec3(unit(random), unit(random), unit(random)) * size;
+  };
+  int slipping = 0, sticking = 0, leaving = 0;
+  for (int k = 0; k < 20000; ++k) {
+    Params p;
+    p.model = k % 5 == 0 ? Model::Smooth : Model::Rolling;
+    p.friction = k % 7 == 0 ? 0.0 : 0.3;
+    ContactSolver solver(p);
+    std::vector<Contact> one(1);
+    const Vec3 face = Vec3::Unit(k % 3) * (k % 2 ? 1 : -1);
+    one[0].normal = k % 4 == 0 ? vec(1).normalized() : face;
+    one[0].surface_velocity = k % 3 == 0 ? Vec3(Vec3::Zero()) : vec(0.05);
+    Velocities body{vec(0.5), vec(0.5 / p.marble_radius)};
+    // Its normal speed relative to the surface within the bounce threshold either way.
+    const Vec3& n = one[0].normal;
+    const double away = (body.linear - one[0].surface_velocity).dot(n);
+    body.linear += (unit(random) * 0.9 * p.bounceThreshold() - away) * n;
+    // Half of them nearly rolling on the surface (slipping at up to some mm/s), where friction
+    // can stop the slip.
+    if (k % 2)
+      body.angular = n.cross(body.linear - one[0].surface_velocity) / p.marble_radius +
+                     vec(0.002 / p.marble_radius);
+    Velocities direct = body, swept = body;
+    std::vector<ContactOutcome> direct_outcomes, swept_outcomes;
+    solver.constrain(one, &direct, &direct_outcomes);
+    const double direct_work = solver.surfaceWork();
+    solver.impact(one, &swept, &swept_outcomes);
+    ASSERT_FALSE(swept_outcomes[0].bounce) << k;
+    ASSERT_EQ(direct.linear, swept.linear) << k;
+    ASSERT_EQ(direct.angular, swept.angular) << k;
+    ASSERT_EQ(direct_outcomes[0].normal_impulse, swept_outcomes[0].normal_impulse) << k;
+    ASSERT_EQ(direct_work, solver.surfaceWork()) << k;
+    if (direct_outcomes[0].normal_impulse == 0) {
+      ++leaving;
+    } else if (p.model == Model::Rolling && p.friction > 0) {
+      const Vec3 slip =
+          direct.linear + direct.angular.cross(-p.marble_radius * n) - one[0].surface_velocity;
+      ++((slip - slip.dot(n) * n).norm() < 1e-12 ? sticking : slipping);
+    }
+  }
+  // Each branch of the solve was taken often.
+  EXPECT_GT(leaving, 1000);
+  EXPECT_GT(sticking, 1000);
+  EXPECT_GT(slipping, 1000);
 }
 
 // --- Rolling resistance and drag ---------------------------------------------------------------

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "marble_maze/embedded_mazes.h"
+#include "marble_maze/in_quotes.h"
 #include "marble_maze/text_file.h"
 
 namespace marble_maze {
@@ -58,7 +59,7 @@ std::string joined(const std::vector<std::string>& words) {
 std::string describe(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
+      return inQuotes(node.Scalar());
     case YAML::NodeType::Sequence:
       return "a list of " + std::to_string(node.size()) + (node.size() == 1 ? " item" : " items");
     case YAML::NodeType::Map:
@@ -174,9 +175,9 @@ class SceneParser {
       const std::string key = item.first.Scalar();
       if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), key) == allowed.end())
         fail(at(item.first),
-             "unknown key '" + key + "' " + what + "; expected one of: " + joined(allowed));
+             "unknown key " + inQuotes(key) + " " + what + "; expected one of: " + joined(allowed));
       if (const Entry* first = findEntry(entries, key))
-        fail(at(item.first), "key '" + key + "' given twice " + what + " (first at line " +
+        fail(at(item.first), "key " + inQuotes(key) + " given twice " + what + " (first at line " +
                                  std::to_string(at(first->key_node).line) + ")");
       entries.push_back({key, item.first, item.second});
     }
@@ -201,7 +202,8 @@ class SceneParser {
       fail(at(node), what + ": expected a width in metres, found " + describe(node));
     }
     if (!std::isfinite(width) || width <= 0)
-      fail(at(node), what + ": expected a positive width in metres, found " + node.Scalar());
+      fail(at(node),
+           what + ": expected a positive width in metres, found " + inQuotes(node.Scalar()));
     // Slots from a micrometre to a kilometre: beyond, a board's extent loses the precision a
     // marble on it needs, or overflows.
     if (width < 1e-6 || width > 1e3)

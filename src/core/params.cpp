@@ -11,6 +11,8 @@
 #include <limits>
 #include <sstream>
 
+#include "marble_maze/in_quotes.h"
+
 namespace marble_maze {
 /// The shortest text that reads back as exactly the same double.
 std::string Params::whyTooFast(double speed) const {
@@ -55,7 +57,8 @@ Vec3 parseVec3(const std::string& key, const std::string& text) {
   for (int a = 0; a < 3; ++a) {
     const auto comma = rest.find(',');
     if ((a < 2) != (comma != std::string::npos))
-      throw ParamError(key + ": expected three comma-separated numbers X,Y,Z, got '" + text + "'");
+      throw ParamError(key + ": expected three comma-separated numbers X,Y,Z, got " +
+                       inQuotes(text));
     v[a] = parseNumber(key, rest.substr(0, comma), -kInf, kInf);
     rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
   }
@@ -114,8 +117,8 @@ Entry choice(const char* key, const char* help, T Params::*member,
                 p.*member = value;
                 return;
               }
-            throw ParamError(std::string(key) + ": expected one of " + listOf(names) + ", got '" +
-                             text + "'");
+            throw ParamError(std::string(key) + ": expected one of " + listOf(names) + ", got " +
+                             inQuotes(text));
           },
           [=](const Params& p) {
             for (const auto& [name, value] : names)
@@ -155,7 +158,7 @@ void applyPreset(Params& p, const std::string& name) {
   std::vector<std::pair<std::string, const Preset*>> names;
   for (const Preset& preset : kPresets) names.emplace_back(preset.name, &preset);
   names.emplace_back("none", nullptr);
-  throw ParamError("preset: expected one of " + listOf(names) + ", got '" + name + "'");
+  throw ParamError("preset: expected one of " + listOf(names) + ", got " + inQuotes(name));
 }
 
 const std::vector<Entry>& entries() {
@@ -205,7 +208,7 @@ const std::vector<Entry>& entries() {
        [](Params& p, const std::string& text) {
          const double n = parseNumber("substeps", text, 1, 1000);
          if (n != std::floor(n))
-           throw ParamError("substeps: expected a whole number, got '" + text + "'");
+           throw ParamError("substeps: expected a whole number, got " + inQuotes(text));
          p.substeps = static_cast<int>(n);
        },
        [](const Params& p) { return std::to_string(p.substeps); },
@@ -256,7 +259,7 @@ const Entry& find(const std::string& key) {
     if (e.info.key == key) return e;
   std::string known;
   for (const auto& e : entries()) known += (known.empty() ? "" : ", ") + e.info.key;
-  throw ParamError("unknown parameter '" + key + "' (known: " + known + ")");
+  throw ParamError("unknown parameter " + inQuotes(key) + " (known: " + known + ")");
 }
 
 }  // namespace
@@ -295,16 +298,16 @@ std::string whyNotANumber(const std::string& text) {
     case NumberText::Finite:
       return "";
     case NumberText::Underflows:
-      return "'" + text +
-             "' underflows: it is too small to tell from 0 (the least is about 2.2e-308)";
+      return inQuotes(text) +
+             " underflows: it is too small to tell from 0 (the least is about 2.2e-308)";
     case NumberText::Overflows:
-      return "'" + text + "' overflows: it is beyond the largest number (about 1.8e308)";
+      return inQuotes(text) + " overflows: it is beyond the largest number (about 1.8e308)";
     case NumberText::NotFinite:
-      return "expected a finite number, got '" + text + "'";
+      return "expected a finite number, got " + inQuotes(text);
     case NumberText::NotANumber:
       break;
   }
-  return "expected a number, got '" + text + "'";
+  return "expected a number, got " + inQuotes(text);
 }
 
 double Params::marbleMass() const {
@@ -347,7 +350,7 @@ Params paramsFromText(const std::string& text, Params base) {
   while (std::getline(lines, line)) {
     if (line.empty()) continue;
     const auto eq = line.find('=');
-    if (eq == std::string::npos) throw ParamError("expected key=value, got '" + line + "'");
+    if (eq == std::string::npos) throw ParamError("expected key=value, got " + inQuotes(line));
     setParam(base, line.substr(0, eq), line.substr(eq + 1));
   }
   return base;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "marble_maze/in_quotes.h"
 #include "marble_maze/params.h"
 #include "marble_maze/text_file.h"
 
@@ -31,7 +32,7 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
     first_row = false;
     if (!numeric) {
       if (header) continue;  // the first row may name the columns; no other row may be words
-      throw error("expected three numbers t,roll,pitch (s, rad, rad), got '" + line + "'");
+      throw error("expected three numbers t,roll,pitch (s, rad, rad), got " + inQuotes(line));
     }
     // (A board turns at most a quarter turn, the largest tilt_limit: a larger angle is a mistake,
     // and one near the largest double would overflow between rows.)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "marble_maze/in_quotes.h"
 #include "wall_throttle.h"
 
 namespace marble_maze_ros {
@@ -452,7 +453,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
     for (const auto& [key, value] : changes) {
       if (key == "real_time_factor") {
         if (!mm::parseFiniteNumber(value, &factor) || factor < 0 || factor > 1e6)
-          return "real_time_factor: expected 0..1e6, got '" + value + "'";
+          return "real_time_factor: expected 0..1e6, got " + mm::inQuotes(value);
       } else {
         mm::setParam(params, key, value);
       }

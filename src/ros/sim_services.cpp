@@ -1,5 +1,7 @@
 #include "sim_services.h"
 
+#include "marble_maze/in_quotes.h"
+
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
@@ -61,7 +63,7 @@ bool SimServices::onLoad(marble_maze::LoadMaze::Request& req,
   const std::string why = req.maze.empty() ? "maze: empty; expected a built-in maze's name "
                                              "(classic, prototype) or a maze file's path"
                                            : control_.load(req.maze);
-  return answer(why, "load_maze", "loaded '" + req.maze + "'", &res);
+  return answer(why, "load_maze", "loaded " + mm::inQuotes(req.maze), &res);
 }
 
 }  // namespace marble_maze_ros

@@ -9,6 +9,8 @@
 #include <ostream>
 #include <set>
 
+#include "marble_maze/in_quotes.h"
+
 namespace marble_maze {
 namespace runner {
 
@@ -108,7 +110,7 @@ Options parseOptions(const std::vector<std::string>& args) {
       const std::string& value = value_of();
       const auto comma = value.find(',');
       if (comma == std::string::npos || value.find(',', comma + 1) != std::string::npos)
-        throw UsageError("--tilt: expected ROLL,PITCH, got '" + value + "'");
+        throw UsageError("--tilt: expected ROLL,PITCH, got " + inQuotes(value));
       o.tilt = TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
                             parseDouble("--tilt", value.substr(comma + 1)));
     } else if (flag == "--tilt-csv") {
@@ -122,13 +124,13 @@ Options parseOptions(const std::vector<std::string>& args) {
       const std::string& value = value_of();
       const auto eq = value.find('=');
       if (eq == std::string::npos || eq == 0)
-        throw UsageError("--set: expected KEY=VALUE, got '" + value + "'");
+        throw UsageError("--set: expected KEY=VALUE, got " + inQuotes(value));
       o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
     } else if (flag == "--duration") {
       const std::string& value = value_of();
       o.duration = parseDouble(flag, value);
       if (!(o.duration >= 0 && o.duration <= 1e6))
-        throw UsageError("--duration: expected 0..1e6 seconds, got '" + value + "'");
+        throw UsageError("--duration: expected 0..1e6 seconds, got " + inQuotes(value));
     } else if (flag == "--out") {
       o.out = value_of();
     } else if (flag == "--bag") {
@@ -142,11 +144,12 @@ Options parseOptions(const std::vector<std::string>& args) {
       constexpr double kMostEvery = std::numeric_limits<int>::max();
       if (n < 1 || n > kMostEvery || n != std::floor(n))
         throw UsageError("--every: expected a whole number from 1 to " +
-                         std::to_string(std::numeric_limits<int>::max()) + ", got '" + value + "'");
+                         std::to_string(std::numeric_limits<int>::max()) + ", got " +
+                         inQuotes(value));
       o.every = static_cast<int>(n);
     } else {
       throw UsageError(flag.rfind("--", 0) == 0
-                           ? "unknown option '" + flag + "' (see simulate --help)"
+                           ? "unknown option " + inQuotes(flag) + " (see simulate --help)"
                            : flag + ": unknown argument");
     }
   }

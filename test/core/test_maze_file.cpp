@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "marble_maze/in_quotes.h"
 #include "marble_maze/maze_file.h"
 #include "marble_maze/simulation.h"
 
@@ -434,6 +435,48 @@ TEST(MazeFileError, LayersPlansOfDifferentSizes) {
   EXPECT_TRUE(failsWith(
       kGrid + "layers:\n  - |\n    ###\n    ###\n  - |\n    SG\n    ..\n",
       "bad.yaml:9:5:", "layers plan 1: expected 3 x 2 characters like plan 0, found 2 x 2"));
+}
+
+TEST(MazeFileError, AFileThatIsNoMazeIsQuotedOnlyInPart) {
+  // A file of some other kind (load_maze takes any path the node can read) is one long plain
+  // scalar to YAML: its message shows the start of it and its size, never the whole of it.
+  std::string other;
+  for (int line = 0; line < 100; ++line)
+    other += "user" + std::to_string(line) + ":x:1000:1000::/home/user:/bin/bash\n";
+  other += "the last line";
+  const std::string what = errorOf(other);
+  EXPECT_TRUE(failsWith(other, "bad.yaml:1:1:",
+                        "expected a mapping of keys at the top level, found "
+                        "'user0:x:1000:1000::/home/user:/bin/bash user1:x:1000:1000::/...' ("))
+      << what;
+  EXPECT_NE(what.find(" bytes)"), std::string::npos) << what;
+  EXPECT_EQ(what.find("the last line"), std::string::npos);
+  EXPECT_LT(what.size(), 200u);
+}
+
+TEST(InQuotes, ShowsAShortTextWholeWithItsControlCharactersEscaped) {
+  EXPECT_EQ(inQuotes("wide"), "'wide'");
+  EXPECT_EQ(inQuotes(""), "''");
+  EXPECT_EQ(inQuotes("a\tb\r\nc\x01\x7f"), "'a\\tb\\r\\nc\\x01\\x7F'");
+  EXPECT_EQ(inQuotes("\xC3\xA9t\xC3\xA9"), "'\xC3\xA9t\xC3\xA9'");  // UTF-8 as it is
+  const std::string sixty(kMostQuotedCharacters, 'x');
+  EXPECT_EQ(inQuotes(sixty), "'" + sixty + "'");  // at the bound: whole
+}
+
+TEST(InQuotes, ClipsALongTextAtAWholeCharacterAndSaysItsSize) {
+  EXPECT_EQ(inQuotes(std::string(1234, 'x')),
+            "'" + std::string(kMostQuotedCharacters, 'x') + "...' (1,234 bytes)");
+  // Sixty two-byte characters and more: the sixtieth is shown whole, the next not at all.
+  std::string accents;
+  for (int i = 0; i < 70; ++i) accents += "\xC3\xA9";
+  EXPECT_EQ(inQuotes(accents),
+            "'" + accents.substr(0, 2 * kMostQuotedCharacters) + "...' (140 bytes)");
+  // A text of control characters shows sixty escapes, not more.
+  std::string escapes;
+  for (std::size_t i = 0; i < kMostQuotedCharacters; ++i) escapes += "\\n";
+  EXPECT_EQ(inQuotes(std::string(100, '\n')), "'" + escapes + "...' (100 bytes)");
+  EXPECT_EQ(inQuotes(std::string(1234567, 'y')).substr(2 + kMostQuotedCharacters + 3),
+            " (1,234,567 bytes)");
 }
 
 TEST(MazeFileError, MissingFile) {

@@ -6,8 +6,8 @@
     same sequence of reset, place_marble, tilt and
     step calls gives bit-identical states;
   - place_marble: refused inside a tile and off the board, the marble staying where it was;
-  - load_maze: refused for a missing and a malformed file (file:line:col), the old maze still
-    running; a built-in maze loads, `maze` and the markers follow; a maze with 5 ms steps runs
+  - load_maze: refused for a missing and a malformed file (file:line:col), and a file of
+    another kind quoted only in part, the old maze still running; a built-in maze loads, `maze` and the markers follow; a maze with 5 ms steps runs
     at real time, one with steps longer than ~publish_rate allows is refused;
   - dynamic_reconfigure: restitution 0.9 acts on the next bounce as eq. (1) says (the upward
     speed after it is 0.9 times the approach, less the gravity since, within 1e-6 m/s); a bad
@@ -153,6 +153,18 @@ class ServicesTest(unittest.TestCase):
         os.unlink(f.name)
         self.assertFalse(broken.success)
         self.assertIn(os.path.basename(f.name) + ":6:", broken.message)
+        # A file of another kind is quoted only in part: the service gives back its start and
+        # its size, not the file.
+        with tempfile.NamedTemporaryFile("w", suffix=".txt", delete=False) as f:
+            f.write("".join("user%d:x:1000:1000::/home/user:/bin/bash\n" % k for k in range(100)))
+            f.write("the last line\n")
+        other = call("load_maze", LoadMaze, f.name)
+        os.unlink(f.name)
+        self.assertFalse(other.success)
+        self.assertIn("found 'user0:x:1000:1000::/home/user:/bin/bash user1:", other.message)
+        self.assertIn(" bytes)", other.message)
+        self.assertNotIn("the last line", other.message)
+        self.assertLess(len(other.message), len(f.name) + 200)
         self.assertEqual(self.mazes.all[-1].name, "open_room")  # the old maze runs on
         loaded = call("load_maze", LoadMaze, "prototype")
         self.assertTrue(loaded.success, loaded.message)

@@ -71,7 +71,17 @@ inline void cosSinc(double a2, double b2, CosSinc* a, CosSinc* b) {
 }
 
 /// The unit quaternion `orientation` turned by the rotation vector `rotation` (its direction the
-/// axis, its length the angle in rad, world frame), and brought back to unit length.
-Quat turnedBy(const Quat& orientation, const Vec3& rotation);
+/// axis, its length the angle in rad, world frame), and brought back to unit length. (Inline,
+/// always: called, it ran 4 ns slower a substep, 2.5% of a rolling step, its quaternion written
+/// to memory and read back.)
+[[gnu::always_inline]] inline Quat turnedBy(const Quat& orientation, const Vec3& rotation) {
+  const CosSinc half = cosSinc(0.25 * rotation.squaredNorm());  // of half the angle
+  const Vec3 v = 0.5 * half.sinc * rotation;                    // sin(angle / 2) along the axis
+  Quat turned = Quat(half.cos, v.x(), v.y(), v.z()) * orientation;
+  // Back to unit length: 1 / sqrt(1 + e) = 1 - e / 2 to within e^2, some 1e-32 for the few
+  // rounding errors e that one turn leaves.
+  turned.coeffs() *= 0.5 * (3 - turned.coeffs().squaredNorm());
+  return turned;
+}
 
 }  // namespace marble_maze

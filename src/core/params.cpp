@@ -14,13 +14,14 @@
 #include "marble_maze/in_quotes.h"
 
 namespace marble_maze {
-/// The shortest text that reads back as exactly the same double.
+
 std::string Params::whyTooFast(double speed) const {
   if (!(speed > mostSpeed())) return "";
   return exactText(speed) + " m/s is more than the " + exactText(mostSpeed()) +
          " m/s (1e5 radii a step) that a step resolves";
 }
 
+/// The shortest text that reads back as exactly the same double.
 std::string exactText(double value) {
   char text[32];
   for (int digits = 6; digits <= 17; ++digits) {

@@ -90,14 +90,13 @@ void Session::place(const Vec3& position_in_board, const Vec3& velocity, const V
   if (!why.empty()) throw std::invalid_argument("position: " + why);
   if (!velocity.allFinite()) throw std::invalid_argument("velocity: not finite");
   if (!spin.allFinite()) throw std::invalid_argument("angular_velocity: not finite");
+  // The rule start_velocity, new physics and a snapshot's restore follow (Params::whyTooFast).
   const Params& p = sim_.params();
-  if (velocity.stableNorm() > p.mostSpeed())
-    throw std::invalid_argument(
-        "velocity: more than 1e5 radii a step, which a step cannot resolve");
-  if (spin.stableNorm() * p.marble_radius > p.mostSpeed())  // its surface as fast
-    throw std::invalid_argument(
-        "angular_velocity: its surface moves more than 1e5 radii a step, which a step cannot "
-        "resolve");
+  const std::string linear = p.whyTooFast(velocity.stableNorm());
+  if (!linear.empty()) throw std::invalid_argument("velocity: " + linear);
+  const std::string surface = p.whyTooFast(spin.stableNorm() * p.marble_radius);
+  if (!surface.empty())
+    throw std::invalid_argument("angular_velocity: its surface's speed " + surface);
   sim_.placeMarble(position_in_board, velocity, spin);
   finished_ = false;
 }

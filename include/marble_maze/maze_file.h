@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "marble_maze/maze.h"
@@ -12,6 +13,10 @@ namespace marble_maze {
 
 /// A maze and the physics it needs: the maze file's `physics:` section applied over defaults.
 struct Scene {
+  Scene() = default;
+  /// A scene built in code: no file answers for it.
+  Scene(Maze maze, Params params) : maze(std::move(maze)), params(std::move(params)) {}
+
   Maze maze;
   Params params;
   std::string text;    ///< the maze file's text it was read from ("" when built in code)

@@ -99,6 +99,16 @@ Entry number(const char* key, const char* unit, const char* help, double Params:
           [=](const Params& p) { return p.*member; }};
 }
 
+/// A member given as text (a vector's "X,Y,Z"), set and read back by the functions given.
+Entry textKey(const char* key, const char* unit, const char* help,
+              std::function<void(Params&, const std::string&)> set,
+              std::function<std::string(const Params&)> get) {
+  return {{key, unit, help, ParamInfo::Type::Text, 0, 0, {}, false},
+          std::move(set),
+          std::move(get),
+          {}};
+}
+
 /// The entry, marked as one that may change while a simulation runs.
 Entry live(Entry entry) {
   entry.info.live = true;
@@ -125,7 +135,8 @@ Entry choice(const char* key, const char* help, T Params::*member,
             for (const auto& [name, value] : names)
               if (value == p.*member) return name;
             return std::string("?");
-          }};
+          },
+          {}};
 }
 
 /// The presets: integrator, step, substeps and model for each use (measured by make tradeoff).
@@ -175,7 +186,8 @@ const std::vector<Entry>& entries() {
         {"realtime", "fast", "accurate", "none"},
         false},
        [](Params& p, const std::string& text) { applyPreset(p, text); },
-       [](const Params& p) { return p.preset; }},
+       [](const Params& p) { return p.preset; },
+       {}},
       number("marble_radius", "m", "marble radius", &Params::marble_radius, 1e-4, 1.0),
       number("marble_density", "kg/m^3", "marble density (steel 7850)", &Params::marble_density,
              1.0, 1e5),
@@ -186,17 +198,18 @@ const std::vector<Entry>& entries() {
       number("gravity", "m/s^2", "gravitational acceleration", &Params::gravity, 0.0, 1000.0),
       live(number("restitution", "", "coefficient of restitution e of eq. (1)",
                   &Params::restitution, 0.0, 1.0)),
-      {{"bounce_threshold", "m/s",
-        "approach speeds below this are contacts, not bounces; auto: 0.02, and for "
-        "semi_implicit_euler at least 2 g step/substeps"},
-       [](Params& p, const std::string& text) {
-         p.bounce_threshold_auto = text == "auto";
-         if (!p.bounce_threshold_auto)
-           p.bounce_threshold = parseNumber("bounce_threshold", text, 0.0, 100.0);
-       },
-       [](const Params& p) {
-         return p.bounce_threshold_auto ? std::string("auto") : format(p.bounce_threshold);
-       }},
+      textKey(
+          "bounce_threshold", "m/s",
+          "approach speeds below this are contacts, not bounces; auto: 0.02, and for "
+          "semi_implicit_euler at least 2 g step/substeps",
+          [](Params& p, const std::string& text) {
+            p.bounce_threshold_auto = text == "auto";
+            if (!p.bounce_threshold_auto)
+              p.bounce_threshold = parseNumber("bounce_threshold", text, 0.0, 100.0);
+          },
+          [](const Params& p) {
+            return p.bounce_threshold_auto ? std::string("auto") : format(p.bounce_threshold);
+          }),
       live(number("friction", "", "Coulomb friction coefficient (rolling model)", &Params::friction,
                   0.0, 10.0)),
       live(number("rolling_resistance", "", "rolling resistance coefficient, 0 = off",
@@ -233,24 +246,27 @@ const std::vector<Entry>& entries() {
              kQuarterTurn),
       number("initial_pitch", "rad", "board pitch at the start", &Params::initial_pitch,
              -kQuarterTurn, kQuarterTurn),
-      {{"board_position", "m", "where the board's pivot is in the world: X,Y,Z"},
-       [](Params& p, const std::string& text) {
-         p.board_position = parseVec3("board_position", text);
-       },
-       [](const Params& p) { return format(p.board_position); }},
-      {{"start_position", "m", "marble start X,Y,Z in the board frame"},
-       [](Params& p, const std::string& text) {
-         p.start_position = parseVec3("start_position", text);
-         p.has_start_position = true;
-       },
-       [](const Params& p) {
-         return p.has_start_position ? format(p.start_position) : "start cell";
-       }},
-      {{"start_velocity", "m/s", "marble start velocity VX,VY,VZ in the world frame"},
-       [](Params& p, const std::string& text) {
-         p.start_velocity = parseVec3("start_velocity", text);
-       },
-       [](const Params& p) { return format(p.start_velocity); }},
+      textKey(
+          "board_position", "m", "where the board's pivot is in the world: X,Y,Z",
+          [](Params& p, const std::string& text) {
+            p.board_position = parseVec3("board_position", text);
+          },
+          [](const Params& p) { return format(p.board_position); }),
+      textKey(
+          "start_position", "m", "marble start X,Y,Z in the board frame",
+          [](Params& p, const std::string& text) {
+            p.start_position = parseVec3("start_position", text);
+            p.has_start_position = true;
+          },
+          [](const Params& p) {
+            return p.has_start_position ? format(p.start_position) : "start cell";
+          }),
+      textKey(
+          "start_velocity", "m/s", "marble start velocity VX,VY,VZ in the world frame",
+          [](Params& p, const std::string& text) {
+            p.start_velocity = parseVec3("start_velocity", text);
+          },
+          [](const Params& p) { return format(p.start_velocity); }),
   };
   return table;
 }

@@ -432,7 +432,7 @@ TEST(Extremes, AMarbleThatCannotStartWhereItIsPutIsRefusedNamingTheKey) {
   EXPECT_NE(refusal(off_board).find("start_position"), std::string::npos) << refusal(off_board);
   // Under the board it was taken, and was off the board at once; a million metres above it,
   // it fell for minutes, drifting 1e290 m at 1e300.
-  for (const std::pair<const char*, const char*> bad :
+  for (const std::pair<const char*, const char*>& bad :
        {std::pair{"0.0136,0.0706,-0.05", "below the board (its top under the floor's)"},
         {"0.0136,0.0706,1e6", "more than 100 m above the board"}}) {
     Scene where = scene;

@@ -60,8 +60,12 @@ TEST(TradeoffCli, TheQuickRunMeasuresWhatEachSchemeIsKnownToDo) {
       EXPECT_LT(number(r, "incline"), 1e-12) << what;
       EXPECT_LT(number(r, "bounce"), 1e-12) << what;
     }
-    if (r.at("integrator") == "rk4") EXPECT_LT(number(r, "drag"), 1e-12) << what;
-    if (r.at("integrator") == "velocity_verlet") EXPECT_GT(number(r, "drag"), 1e-12) << what;
+    if (r.at("integrator") == "rk4") {
+      EXPECT_LT(number(r, "drag"), 1e-12) << what;
+    }
+    if (r.at("integrator") == "velocity_verlet") {
+      EXPECT_GT(number(r, "drag"), 1e-12) << what;
+    }
   }
   const auto find = [&](const char* integrator, const char* step) {
     for (const Row& r : rows)

@@ -144,7 +144,7 @@ class Simulation {
   /// The substep after its start's impacts, the contacts' normals and surface velocities those
   /// of the board's pose they push in until the first impact.
   void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin);
-  /// The contacts that act over a stretch (acting_): all but those the marble is leaving.
+  /// The contacts that act over a stretch (acting()): all but those the marble is leaving.
   void chooseActingContacts(double duration, const Vec3& previous_spin);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   void keepOnHeldContacts(Sweep* sweep) const;
@@ -177,7 +177,10 @@ class Simulation {
   // The contacts whose forces act over the current stretch, and what they did in its first
   // sample; a bent path leaves out the contacts it is leaving (faster than resting and than the
   // surface under it changes; it may come back to them: an impact then, found by the sweep).
-  std::vector<Contact> acting_;
+  // (All of contacts_, most often, or those of them copied to some_acting_.)
+  const std::vector<Contact>& acting() const { return all_act_ ? contacts_ : some_acting_; }
+  bool all_act_ = true;
+  std::vector<Contact> some_acting_;
   double substep_ = 0;  // s: the last step's substep (shorter when the step was cut)
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };

@@ -400,9 +400,9 @@ void Simulation::impact(double time) {
 
 Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration) {
   Velocities b{start.linear + sim_->forces_.acceleration(start.linear) * duration, start.angular};
-  if (sim_->acting_.empty()) return b;  // in flight: nothing constrains it (and no work is done)
+  if (sim_->acting().empty()) return b;  // in flight: nothing constrains it (and no work is done)
   // The first sample's outcomes say which contacts hold the marble; later ones are scratch.
-  sim_->solver_.constrain(sim_->acting_, &b,
+  sim_->solver_.constrain(sim_->acting(), &b,
                           sampled_ ? &sim_->sample_outcomes_ : &sim_->acting_outcomes_);
   if (!sampled_) sim_->board_work_ += sim_->solver_.surfaceWork();
   sampled_ = true;
@@ -410,8 +410,11 @@ Velocities Simulation::ContactDynamics::after(const Velocities& start, double du
 }
 
 void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin) {
-  acting_.clear();
-  for (const Contact& c : contacts_) {
+  // Most often all of them act, and are taken where they are; otherwise those that act are
+  // copied apart.
+  all_act_ = true;
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
     const Vec3 relative = marble_.velocity - c.surface_velocity;
     // How much the marble's normal velocity relative to the surface under it changes over the
     // stretch while it moves with the board: it crosses to other points of the turning board,
@@ -429,7 +432,12 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
     };
     const bool leaving =
         integrator_->bends() && away > kRestingSpeed && away > kRestingSpeed + drift();
-    if (!leaving) acting_.push_back(c);
+    if (leaving && all_act_) {
+      some_acting_.assign(contacts_.begin(), contacts_.begin() + static_cast<std::ptrdiff_t>(i));
+      all_act_ = false;
+    } else if (!leaving && !all_act_) {
+      some_acting_.push_back(c);
+    }
   }
 }
 
@@ -437,7 +445,7 @@ void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
   // The path may not run into a tile the marble touches, whatever the velocities it was built
   // from said: it would end inside the tile. Its rate is linear in s, so a path that leaves
   // neither at its start nor at its end is clear of the tile all along.
-  for (const Contact& c : acting_) {
+  for (const Contact& c : acting()) {
     const Vec3& n = c.normal;
     const double start_into = (path->start_rate - c.surface_velocity).dot(n);
     if (start_into < 0) {
@@ -466,12 +474,13 @@ void Simulation::keepOnHeldContacts(Sweep* sweep) const {
   // A contact that holds the marble leaves it no normal speed relative to the board, so it
   // stays on the surface: what the board's turning adds to the path across it (second order in
   // the step) would otherwise lift it off or sink it in by a few nanometres a step.
-  for (std::size_t i = 0; i < acting_.size(); ++i) {
+  const std::vector<Contact>& acting = this->acting();
+  for (std::size_t i = 0; i < acting.size(); ++i) {
     if (!acting_outcomes_[i].holds()) continue;
-    const Vec3& normal = acting_[i].grid_normal;
+    const Vec3& normal = acting[i].grid_normal;
     sweep->path -= sweep->path.dot(normal) * normal;
     sweep->bend -= sweep->bend.dot(normal) * normal;
-    sweep->keepTo(normal, acting_[i].grid_point);
+    sweep->keepTo(normal, acting[i].grid_point);
   }
 }
 

@@ -70,6 +70,9 @@ class Session {
   /// The events of the last run(), in order.
   const std::vector<Event>& events() const { return events_; }
   std::size_t queued() const { return queue_.size(); }
+  /// Drops the queued commands, the rest of the state kept (a replay's: the recorded inputs hold
+  /// each command again as it acted).
+  void dropQueued() { queue_.clear(); }
   /// Steps since the last command was applied (since the start if none was).
   std::uint64_t stepsSinceCommand() const { return sim_.steps() - last_command_step_; }
   /// The commands applied in the last run(), in order, each with the step it took effect at.

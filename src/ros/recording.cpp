@@ -122,6 +122,12 @@ Replayer::Replayer(const Recording& recording, const Overrides& overrides)
   settings.auto_reset = recording.scene.auto_reset;
   session_ = std::make_unique<mm::Session>(scene, settings);
   session_->restore(recording.snapshot.state);
+  // The commands the snapshot still held come again among the recorded inputs, each at the step
+  // it acted at (the node logs a command as it acts): they act from there, at their simulated
+  // time under any step. From the queue, which counts steps, they would act at another time
+  // under another step length (one queued two steps ahead acted 1 ms early at half the step: the
+  // board 2 mrad ahead, a millisecond of its rate limit).
+  session_->dropQueued();
   const mm::SimSnapshot& snapshot = recording.snapshot;
   const auto recorded_ns = std::llround(mm::paramsFromText(snapshot.params).step * 1e9);
   clock_.anchor(snapshot.anchor_stamp, snapshot.anchor_step, snapshot.anchor_time, recorded_ns);
@@ -171,8 +177,8 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
     switch (in.kind) {
       case K::TILT:
       case K::TILT_RATE:
-        // As applied in the session, in the order it applied them: after any the snapshot
-        // still held for this step (which the session applied too, and logged among these).
+        // As applied in the session, in the order it applied them (those the snapshot still
+        // held among them: see the constructor).
         session_->command(
             {session_->steps(),
              in.kind == K::TILT ? mm::TiltCommand::Kind::Angles : mm::TiltCommand::Kind::Rates,

@@ -198,10 +198,11 @@ class RecordReplayTest(unittest.TestCase):
 
         # Under half the step each input acts at its recorded simulated time: the board tilts as
         # it did (its servo's lag is exact at any step) until the marble, which goes its own way,
-        # first finishes in either run. Mostly within microradians; in one loaded make test of
-        # 2026-12-02, 2.005 mrad: one step (1 ms) of the 2 rad/s rate limit, as if a command had
-        # acted a step apart in the two runs (not explained yet). (Each input used to act at its
-        # step number, at half its time.)
+        # first finishes in either run: within microradians, where the rate limit takes over at
+        # another instant. (Each input used to act at its step number, at half its time; and a
+        # command the first snapshot still held acted from its queue, which counts steps: a
+        # millisecond early under half the step, 2 mrad of the rate limit, in one loaded make
+        # test of 2026-12-02, until stop 28.)
         (recorded, finish), (halved, finish_halved) = board(), board("--set", "step=0.0005")
         # Both run to the session's end.
         self.assertAlmostEqual(max(recorded), max(halved), delta=0.002)
@@ -209,7 +210,9 @@ class RecordReplayTest(unittest.TestCase):
                   if t < min(finish, finish_halved)]
         self.assertGreater(common[-1] - common[0], 3)
         worst = max(max(abs(a - b) for a, b in zip(recorded[t], halved[t])) for t in common)
-        self.assertLess(worst, 2.5e-3)
+        print("another step: the board %.3g rad apart at most over %.1f s" %
+              (worst, common[-1] - common[0]))
+        self.assertLess(worst, 5e-4)
         self.assertGreater(max(abs(r) for t in common for r in recorded[t]),
                            0.01)  # the board tilts: the comparison means something
         # A bag without the states: --check has nothing to compare, and says so.

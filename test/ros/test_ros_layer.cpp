@@ -2,6 +2,7 @@
 // the markers, a recording re-simulated.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "../../src/ros/maze_description.h"
@@ -151,6 +152,63 @@ TEST(Replayer, ARecordedLoadRefusingParametersSetOverTheRecordingSaysWhichAndWhy
               std::string::npos)
         << what;
   }
+}
+
+/// A session on the classic maze whose snapshot still holds a tilt command queued for step 4 (a
+/// stamp 4 ms ahead), recorded with the command as the node logs it: an input at the step it
+/// acted at.
+Recording recordingWithAQueuedCommand() {
+  const mm::Scene classic = mm::loadScene("classic");
+  mm::Session session(classic, mm::SessionSettings());
+  session.command({4, mm::TiltCommand::Kind::Angles, 0.1, -0.05, 0});
+  Recording r;
+  r.scene.maze_text = classic.text;
+  r.scene.maze_source = classic.source;
+  r.scene.params = mm::paramsText(classic.params);
+  r.snapshot.header.stamp = ros::Time(100);
+  r.snapshot.state = session.save();
+  r.snapshot.params = r.scene.params;
+  r.snapshot.anchor_stamp = ros::Time(100);
+  marble_maze::SimInput tilt;
+  tilt.kind = marble_maze::SimInput::TILT;
+  tilt.index = 0;
+  tilt.step = 4;
+  tilt.header.stamp = ros::Time(100.004);
+  tilt.roll = 0.1;
+  tilt.pitch = -0.05;
+  r.inputs.push_back(tilt);
+  return r;
+}
+
+TEST(Replayer, ACommandTheSnapshotHeldActsAtItsRecordedTimeUnderAnotherStep) {
+  const Recording recording = recordingWithAQueuedCommand();
+  ASSERT_EQ(mm::Session(mm::loadScene("classic")).simulation().params().step, 0.001);
+  const auto tilt = [](Replayer& replay) {
+    const mm::Board& board = replay.session().simulation().board();
+    return std::abs(board.roll()) + std::abs(board.pitch());
+  };
+  const auto run = [](Replayer& replay, int steps) {
+    for (int k = 0; k < steps; ++k) {
+      replay.applyDue();
+      replay.step();
+    }
+  };
+  // The command acted at 4 ms: until then the board stays level, in 1 ms steps and in 0.5 ms
+  // ones. (From the snapshot's queue, which counts steps, it acted at 2 ms under 0.5 ms steps.)
+  Replayer recorded(recording), halved(recording, {{"step", "0.0005"}});
+  run(recorded, 4);
+  run(halved, 8);
+  EXPECT_EQ(tilt(recorded), 0.0);
+  EXPECT_EQ(tilt(halved), 0.0);
+  // Then the board turns alike in both, at 10 ms within what the servo's rate limit leaves of
+  // rounding where it takes over at another instant (microradians; a step early was 2 mrad).
+  run(recorded, 6);
+  run(halved, 12);
+  const mm::Board& a = recorded.session().simulation().board();
+  const mm::Board& b = halved.session().simulation().board();
+  EXPECT_GT(tilt(recorded), 1e-3);  // the board turns: the comparison means something
+  EXPECT_NEAR(a.roll(), b.roll(), 1e-5);
+  EXPECT_NEAR(a.pitch(), b.pitch(), 1e-5);
 }
 
 TEST(MazeDescription, DescribesTheMazeAndReadsBackTheSameMaze) {

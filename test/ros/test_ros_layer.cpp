@@ -101,19 +101,25 @@ TEST(SeqGaps, ALoopOrARestartIsNoLossAndMemoryStaysBounded) {
   EXPECT_EQ(lostIn(&gaps, run(0, 10) + run(20, 2 * SeqGaps::kQuiet), "/tilt /late"), 10u);
 }
 
-/// A session on the classic maze from its start, recorded with one input: a load of the
-/// prototype at step 10 (what a bag of record.launch holds, without the bag).
-Recording recordingWithALoad() {
-  const mm::Scene classic = mm::loadScene("classic"), prototype = mm::loadScene("prototype");
-  const mm::Session session(classic, mm::SessionSettings());
+/// A session on a scene recorded from its state now, at 100 s, without inputs yet (what a bag of
+/// record.launch holds, without the bag).
+Recording recordingFrom(const mm::Scene& scene, const mm::Session& session) {
   Recording r;
-  r.scene.maze_text = classic.text;
-  r.scene.maze_source = classic.source;
-  r.scene.params = mm::paramsText(classic.params);
+  r.scene.maze_text = scene.text;
+  r.scene.maze_source = scene.source;
+  r.scene.params = mm::paramsText(scene.params);
   r.snapshot.header.stamp = ros::Time(100);
   r.snapshot.state = session.save();
   r.snapshot.params = r.scene.params;
   r.snapshot.anchor_stamp = ros::Time(100);
+  return r;
+}
+
+/// A session on the classic maze from its start, recorded with one input: a load of the
+/// prototype at step 10.
+Recording recordingWithALoad() {
+  const mm::Scene classic = mm::loadScene("classic"), prototype = mm::loadScene("prototype");
+  Recording r = recordingFrom(classic, mm::Session(classic));
   marble_maze::SimInput load;
   load.kind = marble_maze::SimInput::LOAD;
   load.index = 0;
@@ -159,16 +165,9 @@ TEST(Replayer, ARecordedLoadRefusingParametersSetOverTheRecordingSaysWhichAndWhy
 /// acted at.
 Recording recordingWithAQueuedCommand() {
   const mm::Scene classic = mm::loadScene("classic");
-  mm::Session session(classic, mm::SessionSettings());
+  mm::Session session(classic);
   session.command({4, mm::TiltCommand::Kind::Angles, 0.1, -0.05, 0});
-  Recording r;
-  r.scene.maze_text = classic.text;
-  r.scene.maze_source = classic.source;
-  r.scene.params = mm::paramsText(classic.params);
-  r.snapshot.header.stamp = ros::Time(100);
-  r.snapshot.state = session.save();
-  r.snapshot.params = r.scene.params;
-  r.snapshot.anchor_stamp = ros::Time(100);
+  Recording r = recordingFrom(classic, session);
   marble_maze::SimInput tilt;
   tilt.kind = marble_maze::SimInput::TILT;
   tilt.index = 0;

@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "marble_maze/in_quotes.h"
 
@@ -99,7 +100,8 @@ Entry number(const char* key, const char* unit, const char* help, double Params:
           [=](const Params& p) { return p.*member; }};
 }
 
-/// A member given as text (a vector's "X,Y,Z"), set and read back by the functions given.
+/// A key given as free text (a vector's "X,Y,Z", a number or "auto"), set and read back by the
+/// functions given.
 Entry textKey(const char* key, const char* unit, const char* help,
               std::function<void(Params&, const std::string&)> set,
               std::function<std::string(const Params&)> get) {

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "marble_maze/in_quotes.h"
+
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
@@ -93,10 +95,12 @@ void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& s) {
     const std::string& frame = *frames[i].second;
     if (frame.empty()) throw std::runtime_error(name + ": a frame needs a name");
     if (frame[0] == '/')
-      throw std::runtime_error(name + ": '" + frame + "' starts with '/', which tf2 refuses");
+      throw std::runtime_error(name + ": " + mm::inQuotes(frame) +
+                               " starts with '/', which tf2 refuses");
     for (std::size_t j = 0; j < i; ++j)
       if (frame == *frames[j].second)
-        throw std::runtime_error(name + ": '" + frame + "' is " + pnh.resolveName(frames[j].first) +
+        throw std::runtime_error(name + ": " + mm::inQuotes(frame) + " is " +
+                                 pnh.resolveName(frames[j].first) +
                                  " too; tf needs world -> board -> marble to be three frames");
   }
 }

@@ -150,7 +150,7 @@ Options parseOptions(const std::vector<std::string>& args) {
     } else {
       throw UsageError(flag.rfind("--", 0) == 0
                            ? "unknown option " + inQuotes(flag) + " (see simulate --help)"
-                           : flag + ": unknown argument");
+                           : "unknown argument " + inQuotes(flag) + " (see simulate --help)");
     }
   }
   // Two CSVs in one file, or both on standard output, would be one garbled CSV.

@@ -115,6 +115,7 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
   const std::string csv_again = csv.substr(0, csv.rfind('/')) + "/." + csv.substr(csv.rfind('/'));
   const std::pair<std::string, std::string> cases[] = {
       {"--bogus 1", "unknown option '--bogus'"},
+      {"stray", "unknown argument 'stray'"},
       {"--tilt 0.1", "--tilt: expected ROLL,PITCH"},
       {"--duration abc", "--duration: expected a number"},
       {"--set restitution=2", "restitution: 2 is out of range [0, 1]"},

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "marble_maze/simulation.h"
-#include "scenes.h"
+#include "step_loop.h"
 
 namespace mm = marble_maze;
 
@@ -30,24 +30,10 @@ const mm::Scene& sceneOfSize(int cells) {
   return it->second;
 }
 
-/// Steps the simulation under a circling tilt (one turn in about 3 s), which keeps the marble
-/// rolling into walls, and starts it over when it finishes or every `restart_every` steps. The
-/// tilts are worked out beforehand so that only the step is timed.
+/// The timed loop (step_loop.h), and what the steps cost in counts: substeps, sweeps, gathers.
 void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_every = 0) {
-  std::vector<std::pair<double, double>> tilts(3142);
-  for (std::size_t i = 0; i < tilts.size(); ++i) {
-    const double t = static_cast<double>(i) * sim->params().step;
-    tilts[i] = {0.1 * std::sin(2.0 * t), 0.1 * std::cos(2.0 * t)};
-  }
   const mm::StepCounts before = sim->counts();
-  std::size_t n = 0;
-  for (auto _ : state) {
-    const auto& [roll, pitch] = tilts[n++ % tilts.size()];
-    sim->setTargetTilt(roll, pitch);
-    sim->step();
-    if (sim->marble().phase != mm::MarblePhase::Free || (restart_every && n % restart_every == 0))
-      sim->reset();
-  }
+  const std::size_t n = mm::bench::stepUnderCirclingTilt(state, sim, restart_every);
   const mm::StepCounts after = sim->counts();
   const double steps = static_cast<double>(std::max<std::size_t>(n, 1));
   state.counters["substeps"] = static_cast<double>(after.substeps - before.substeps) / steps;
@@ -77,10 +63,7 @@ void fixedSteps(benchmark::internal::Benchmark* b) {
 /// The baseline: the step's fixed part. The marble falls from 1 m above the tilting board, far
 /// from every tile, for 0.4 s at a time.
 void BM_FreeFlight(benchmark::State& state) {
-  mm::Scene scene = sceneOfSize(10);
-  scene.params.has_start_position = true;
-  scene.params.start_position = mm::Vec3(0, 0, 1.0);
-  mm::Simulation sim(scene);
+  mm::Simulation sim(mm::bench::inFreeFlight(sceneOfSize(10)));
   runSteps(state, &sim, 400);
 }
 BENCHMARK(BM_FreeFlight)->Apply(fixedSteps);

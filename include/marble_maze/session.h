@@ -1,8 +1,8 @@
 // A simulation as programs drive it, without ROS: tilt commands that take effect at a given
 // step, the timed actions of a game (the board levels when commands stop, rate commands run out,
 // the marble goes back to the start after a hole or the goal), pause, steps on demand, placing
-// the marble, another maze, other physics. Everything happens at a step and is counted in steps
-// of simulated time, never when a timer fires, so the same calls give bit-identical states: the
+// the marble, another maze, other physics. Everything happens at a step and is timed in
+// simulated time, never when a timer fires, so the same calls give bit-identical states: the
 // node (with a clock policy around it), simulate and replay share it.
 #pragma once
 
@@ -73,8 +73,9 @@ class Session {
   /// Drops the queued commands, the rest of the state kept (a replay's: the recorded inputs hold
   /// each command again as it acted).
   void dropQueued() { queue_.clear(); }
-  /// Steps since the last command was applied (since the start if none was).
-  std::uint64_t stepsSinceCommand() const { return sim_.steps() - last_command_step_; }
+  /// s of simulated time since the step the last command was applied at (since the start if
+  /// none was).
+  double timeSinceCommand() const { return sim_.time() - last_command_time_; }
   /// The commands applied in the last run(), in order, each with the step it took effect at.
   const std::vector<TiltCommand>& applied() const { return applied_; }
 
@@ -93,7 +94,9 @@ class Session {
 
  private:
   void apply(const TiltCommand& command);
-  std::uint64_t stepsOf(double seconds) const;
+  /// Whether `seconds` have passed since the simulated time `since`, both counted in whole steps
+  /// of the current length: at the step nearest that time, across a change of the step too.
+  bool passed(double seconds, double since) const;
 
   SessionSettings settings_;
   Simulation sim_;
@@ -102,11 +105,13 @@ class Session {
   std::vector<TiltCommand> applied_;
   bool paused_ = false;
   bool commanded_ = false;  // a command was applied since the start or the last reset
-  std::uint64_t last_command_step_ = 0;
+  // The timed actions' clocks, in s of simulated time rather than steps, so that they keep their
+  // time across a change of step.
+  double last_command_time_ = 0;
   bool driving_rates_ = false;
   bool levelled_ = false;
   bool finished_ = false;
-  std::uint64_t finished_step_ = 0;
+  double finished_time_ = 0;
 };
 
 }  // namespace marble_maze

@@ -10,8 +10,14 @@ namespace marble_maze {
 Session::Session(const Scene& scene, const SessionSettings& settings)
     : settings_(settings), sim_(scene) {}
 
-std::uint64_t Session::stepsOf(double seconds) const {
-  return std::max<std::uint64_t>(1, std::llround(seconds / sim_.params().step));
+bool Session::passed(double seconds, double since) const {
+  // Steps of the current length: `seconds` rounded to a whole number of them (at least one),
+  // and the time since rounded likewise (to the step count itself while the step has not
+  // changed, whatever the times' rounding), compared without a rounding to an integer that a
+  // huge time could overflow.
+  const double step = sim_.params().step;
+  const double steps = std::max(1.0, std::round(seconds / step));
+  return (sim_.time() - since) / step >= steps - 0.5;
 }
 
 namespace {
@@ -41,7 +47,7 @@ void Session::apply(const TiltCommand& command) {
   driving_rates_ = command.kind == TiltCommand::Kind::Rates;
   commanded_ = true;
   levelled_ = false;
-  last_command_step_ = sim_.steps();
+  last_command_time_ = sim_.time();
 }
 
 void Session::run(std::uint64_t count) {
@@ -54,13 +60,13 @@ void Session::run(std::uint64_t count) {
     }
     // The timed actions, at the step their time comes.
     if (settings_.tilt_timeout > 0 && commanded_ && !levelled_ &&
-        stepsSinceCommand() >= stepsOf(settings_.tilt_timeout)) {
+        passed(settings_.tilt_timeout, last_command_time_)) {
       sim_.setTargetTilt(0, 0);
       levelled_ = true;
       driving_rates_ = false;
     }
     if (settings_.rate_timeout > 0 && driving_rates_ &&
-        stepsSinceCommand() >= stepsOf(settings_.rate_timeout)) {
+        passed(settings_.rate_timeout, last_command_time_)) {
       sim_.setTiltRate(0, 0);
       driving_rates_ = false;
     }
@@ -69,10 +75,9 @@ void Session::run(std::uint64_t count) {
     if (sim_.marble().phase == MarblePhase::Free) continue;
     if (!finished_) {
       finished_ = true;
-      finished_step_ = sim_.steps();
+      finished_time_ = sim_.time();
     }
-    if (settings_.auto_reset > 0 && sim_.steps() - finished_step_ >= stepsOf(settings_.auto_reset))
-      reset();
+    if (settings_.auto_reset > 0 && passed(settings_.auto_reset, finished_time_)) reset();
   }
 }
 
@@ -119,9 +124,11 @@ void Session::setParams(const Params& params) {
 
 namespace {
 // Version 2: each queued command's order, and the time and steps the simulated time counts from.
-// A version-1 state (recorded before them) is read with order 0 for each command, as it was
-// queued then, and its time counted from where it was saved.
-constexpr std::uint32_t kSnapshotVersion = 2;
+// Version 3: the timed actions' clocks (the last command's, the finish's) as simulated times
+// rather than step counts. A version-1 state (recorded before version 2) is read with order 0 for
+// each command, as it was queued then, and its time counted from where it was saved; the clocks
+// of versions 1 and 2 count steps of the restoring session's length, as they did.
+constexpr std::uint32_t kSnapshotVersion = 3;
 }  // namespace
 
 std::vector<std::uint8_t> Session::save() const {
@@ -138,15 +145,15 @@ std::vector<std::uint8_t> Session::save() const {
   }
   for (bool flag : {paused_, commanded_, driving_rates_, levelled_, finished_})
     out.put(static_cast<std::uint8_t>(flag));
-  out.put(last_command_step_);
-  out.put(finished_step_);
+  out.put(last_command_time_);
+  out.put(finished_time_);
   return out.bytes();
 }
 
 void Session::restore(const std::vector<std::uint8_t>& bytes) {
   ByteReader in(bytes);
   const auto version = in.get<std::uint32_t>();
-  if (version != kSnapshotVersion && version != 1)
+  if (version < 1 || version > kSnapshotVersion)
     throw std::runtime_error("snapshot: not a state of this version");
   Simulation sim = sim_;
   sim.restore(&in, version >= 2);
@@ -174,8 +181,23 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
     throw std::runtime_error("snapshot: the queued commands are not in the order they act in");
   bool flags[5];
   for (bool& flag : flags) flag = in.get<std::uint8_t>() != 0;
-  const auto last_command = in.get<std::uint64_t>();
-  const auto finished_step = in.get<std::uint64_t>();
+  // The clocks, as times no later than the state's.
+  const auto clock = [&](const char* what) {
+    if (version >= 3) {
+      const double time = in.get<double>();
+      if (!std::isfinite(time) || time > sim.time())
+        throw std::runtime_error(std::string("snapshot: the ") + what + "'s time " +
+                                 exactText(time) + " s is not finite or after the state's");
+      return time;
+    }
+    const auto step = in.get<std::uint64_t>();
+    if (step > sim.steps())
+      throw std::runtime_error(std::string("snapshot: the ") + what + "'s step " +
+                               std::to_string(step) + " is after the state's");
+    return sim.time() - static_cast<double>(sim.steps() - step) * sim.params().step;
+  };
+  const double last_command = clock("last command");
+  const double finished = clock("finish");
   if (!in.done()) throw std::runtime_error("snapshot: bytes left over after the state");
   sim_ = sim;
   queue_ = queue;
@@ -184,8 +206,8 @@ void Session::restore(const std::vector<std::uint8_t>& bytes) {
   driving_rates_ = flags[2];
   levelled_ = flags[3];
   finished_ = flags[4];
-  last_command_step_ = last_command;
-  finished_step_ = finished_step;
+  last_command_time_ = last_command;
+  finished_time_ = finished;
   events_.clear();
   applied_.clear();
 }

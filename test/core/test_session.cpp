@@ -33,7 +33,7 @@ TEST(Session, ACommandTakesEffectAtItsStep) {
   s.run(1);
   EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.05);
   EXPECT_DOUBLE_EQ(s.simulation().board().pitch(), -0.02);
-  EXPECT_EQ(s.stepsSinceCommand(), 1u);
+  EXPECT_NEAR(s.timeSinceCommand(), 0.001, 1e-15);
 }
 
 TEST(Session, CommandsOfOneStepActInTheirOrderWhateverTheirArrival) {
@@ -62,9 +62,10 @@ TEST(Session, CommandsOfOneStepActInTheirOrderWhateverTheirArrival) {
   EXPECT_EQ(b.save(), a.save());
   // A state of version 1 (recorded before commands had an order and the time an origin) still
   // restores, and goes on as the session it was saved from. With one command queued its bytes
-  // are version 2's less the origin (its time, step count and step: 24 bytes before the queue's
+  // are version 3's less the origin (its time, step count and step: 24 bytes before the queue's
   // length), less the command's order (its last 8 of 36), and its version; the flags and two
-  // step counts (21) end both.
+  // clocks (21) end both, the clocks as step counts in version 1 (the last command's, step 5;
+  // the finish's, 0, never reached, as 0.0 s is in version 3).
   a.run(100);
   a.command({300, TiltCommand::Kind::Angles, 0.07, -0.03, 5});
   const std::vector<std::uint8_t> now = a.save();
@@ -74,6 +75,8 @@ TEST(Session, CommandsOfOneStepActInTheirOrderWhateverTheirArrival) {
   old.insert(old.end(), at(tail + command + count), at(tail + 8));
   old.insert(old.end(), at(tail), now.end());
   old[0] = 1;
+  const std::uint64_t last_command_step = 5;
+  std::memcpy(old.data() + old.size() - 16, &last_command_step, sizeof last_command_step);
   Session c(room());
   c.restore(old);
   EXPECT_EQ(c.steps(), a.steps());
@@ -170,6 +173,49 @@ TEST(Session, AutoResetPutsTheMarbleBackAtItsStep) {
   }
   ASSERT_GT(fell, 0u);
   s.run(199);
+  EXPECT_EQ(s.simulation().marble().phase, MarblePhase::InHole);
+  s.run(1);
+  EXPECT_EQ(s.simulation().marble().phase, MarblePhase::Free);
+}
+
+TEST(Session, TheTimedActionsKeepTheirTimeAcrossAChangeOfStep) {
+  // A tilt timeout of 0.5 s after a command at 0 s: the step changes from 1 to 2 ms at 0.1 s,
+  // live (setParams) or in a replay (a snapshot restored under the new step); the board still
+  // levels at 0.5 s, not when as many steps of the new length have passed as it counted of the
+  // old (0.4 s when the clock counted steps).
+  SessionSettings settings;
+  settings.tilt_timeout = 0.5;
+  Session live(room(), settings);
+  live.command({0, TiltCommand::Kind::Angles, 0.05, 0.05});
+  live.run(100);
+  const std::vector<std::uint8_t> at_100ms = live.save();
+  Params coarse = live.simulation().params();
+  coarse.step = 0.002;
+  live.setParams(coarse);
+  Session replay(test::flatFloor(20, 20, 0.01, coarse), settings);
+  replay.restore(at_100ms);
+  for (Session* s : {&live, &replay}) {
+    s->run(200);  // the timeout checked at the start of each step, up to the one from 0.498 s
+    EXPECT_NEAR(s->simulation().time(), 0.5, 1e-12);
+    EXPECT_DOUBLE_EQ(s->simulation().board().roll(), 0.05);
+    s->run(1);  // the step from 0.5 s
+    EXPECT_EQ(s->simulation().board().roll(), 0.0);
+  }
+  // The auto reset too: 0.2 s after the marble falls into a hole, whatever the step since.
+  Scene holed = room();
+  for (int j : {9, 10})
+    for (int i : {9, 10}) holed.maze.setSolid({i, j, 0}, false);
+  settings.auto_reset = 0.2;
+  Session s(holed, settings);
+  while (s.simulation().marble().phase == MarblePhase::Free && s.steps() < 2000) s.run(1);
+  ASSERT_EQ(s.simulation().marble().phase, MarblePhase::InHole);
+  const double fell = s.simulation().time();
+  s.run(50);
+  Params fine = s.simulation().params();
+  fine.step = 0.0005;
+  s.setParams(fine);
+  s.run(299);  // checked after each step: the last at fell + 0.1995 s
+  EXPECT_NEAR(s.simulation().time() - fell, 0.1995, 1e-12);
   EXPECT_EQ(s.simulation().marble().phase, MarblePhase::InHole);
   s.run(1);
   EXPECT_EQ(s.simulation().marble().phase, MarblePhase::Free);
@@ -303,7 +349,7 @@ TEST(Session, ARestoredBoardMovesAsTheRestoringSessionsServoAndLimitsSay) {
   EXPECT_NEAR(d.simulation().board().roll() - start, 0.1 * 10 * limited.step, 1e-12);
 }
 
-// Where Session::save (snapshot version 2) puts some of its values, in bytes from the start.
+// Where Session::save (snapshot version 3) puts some of its values, in bytes from the start.
 namespace layout {
 constexpr std::size_t kPosition = 4, kVelocity = 28, kSpin = 52, kOrientation = 76, kPhase = 108,
                       kContacts = 112, kDrive = 116, kTargetRoll = 136, kRoll = 168,
@@ -341,6 +387,7 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
   ASSERT_EQ(valueAt<std::uint64_t>(saved, layout::kQueued), 2u);
   ASSERT_EQ(valueAt<std::uint64_t>(saved, layout::kFirstCommand + 36), 3000u);
   ASSERT_EQ(valueAt<double>(saved, layout::kFirstCommand + 12), -0.02);
+  ASSERT_EQ(valueAt<double>(saved, saved.size() - 16), 0.005);  // the last command's clock
   const double nan = std::nan(""), inf = INFINITY;
   const struct {
     std::vector<std::uint8_t> bytes;
@@ -372,6 +419,11 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
        "queued command 0's roll or pitch is not finite"},
       {withValueAt<std::uint64_t>(saved, layout::kFirstCommand, 5000),
        "the queued commands are not in the order they act in"},
+      {withValueAt(saved, saved.size() - 16, nan),
+       "the last command's time nan s is not finite or after the state's"},
+      {withValueAt(saved, saved.size() - 16, 0.051),
+       "the last command's time 0.051 s is not finite or after the state's"},
+      {withValueAt(saved, saved.size() - 8, -inf), "the finish's time -inf s is not finite"},
   };
   Session b(room());
   b.restore(saved);
@@ -428,7 +480,7 @@ TEST(Session, ParamsReadBackExactlyFromTheirText) {
 // changed on purpose. A change to it must be made on purpose, with a note in the README's
 // "Determinism" paragraph saying why.
 TEST(Determinism, AFixedScenarioEndsInThePinnedState) {
-  constexpr std::uint64_t kExpected = 0xa71d1a8e839776f6ull;  // recorded 2026-12-02
+  constexpr std::uint64_t kExpected = 0x8eafaaace6a4c7b1ull;  // recorded 2026-12-03
   Scene scene = loadScene("classic");
   SessionSettings settings;
   settings.auto_reset = 1.0;

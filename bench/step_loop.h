@@ -36,9 +36,9 @@ inline Scene inFreeFlight(Scene scene) {
   return scene;
 }
 
-/// Steps the simulation under the circling tilt, and starts it over when
-/// it finishes or every `restart_every` steps (0: never). The tilts are worked out beforehand so
-/// that only the step is timed. Returns the steps taken.
+/// Steps the simulation under the circling tilt, and starts it over when it finishes or every
+/// `restart_every` steps (0: never). The tilts are worked out beforehand so that only the step
+/// is timed. Returns the steps taken.
 inline std::size_t stepUnderCirclingTilt(benchmark::State& state, Simulation* sim,
                                          std::size_t restart_every = 0) {
   const std::vector<std::pair<double, double>> tilts = circlingTilts(sim->params().step);

@@ -2,13 +2,13 @@
 // (simulate --bag, the replay node). An input is either a list of edits to a sound snapshot (a
 // session on the classic maze, mid-play with two commands queued): each three bytes, a 16-bit
 // offset into it and the byte to put there, so that every value of the state is reached; or,
-// behind a first byte 0xFF, the snapshot's bytes themselves (fuzz/corpus/snapshot/raw_sound is
-// one, for libFuzzer to grow and cut). A snapshot is either refused with a std::runtime_error that
-// says "snapshot: ..." (the session unchanged), or it is a state that restores again to the bit
-// from its own save, and that the session steps on for 30 steps under a tilt, staying sound (the
-// marble and the board finite, the orientation of unit length, the tilt within a quarter turn),
-// as does a session of another servo and lower limits that restores it. Anything else (another
-// exception, a crash, undefined behaviour, a hang) is a finding.
+// behind a first byte 0xFF, the snapshot's bytes themselves (fuzz/corpus/snapshot/raw_sound_v3
+// is one, raw_sound one of version 2, for libFuzzer to grow and cut). A snapshot is either refused
+// with a std::runtime_error that says "snapshot: ..." (the session unchanged), or it is a state
+// that restores again to the bit from its own save, and that the session steps on for 30 steps
+// under a tilt, staying sound (the marble and the board finite, the orientation of unit length, the
+// tilt within a quarter turn), as does a session of another servo and lower limits that restores
+// it. Anything else (another exception, a crash, undefined behaviour, a hang) is a finding.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -82,18 +82,7 @@ void BM_StepByMazeSize(benchmark::State& state) {
   mm::Simulation sim(sceneOfSize(static_cast<int>(state.range(0))));
   runSteps(state, &sim);
 }
-BENCHMARK(BM_StepByMazeSize)
-    ->Apply(fixedSteps)
-    ->ArgName("cells")
-    ->Arg(10)
-    ->Arg(100)
-    ->Arg(200)
-    ->Arg(295)
-    ->Arg(299)
-    ->Arg(300)
-    ->Arg(400)
-    ->Arg(500)
-    ->Arg(1000);
+BENCHMARK(BM_StepByMazeSize)->Apply(fixedSteps)->Apply(mm::bench::mazeSizes);
 
 void BM_StepByPhysics(benchmark::State& state) {
   mm::Scene scene = sceneOfSize(10);

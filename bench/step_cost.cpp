@@ -27,17 +27,7 @@ void BM_StepByMazeSize(benchmark::State& state) {
   mm::Simulation sim({mm::test::generatedMaze(static_cast<int>(state.range(0))), mm::Params()});
   mm::bench::stepUnderCirclingTilt(state, &sim);
 }
-BENCHMARK(BM_StepByMazeSize)
-    ->ArgName("cells")
-    ->Arg(10)
-    ->Arg(100)
-    ->Arg(200)
-    ->Arg(295)
-    ->Arg(299)
-    ->Arg(300)
-    ->Arg(400)
-    ->Arg(500)
-    ->Arg(1000);
+BENCHMARK(BM_StepByMazeSize)->Apply(mm::bench::mazeSizes);
 
 }  // namespace
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The step's cost now against the core of an earlier commit, both built here with the package's
-# flags and timed in turns on issue 11's cases (bench/step_cost.cpp): a speed-up that no
+# The step's cost now against the core of an earlier commit, both built here alike (-O3, a static
+# library) and timed in turns on issue 11's cases (bench/step_cost.cpp): a speed-up that no
 # machine's speed moves, beside make bench's nanoseconds. Usage: speedup.sh [COMMIT] (default:
 # the first commit, whose step issue 11 asks to be three times faster); ROUNDS (default 3) runs
 # of each build in turn, each case's best kept. Needs the repository's history.
@@ -11,7 +11,7 @@ commit=${1:-cd36eeb}
 rounds=${ROUNDS:-3}
 [[ $rounds =~ ^[1-9][0-9]*$ ]] || { echo "ROUNDS: '$rounds' is not a positive whole number" >&2; exit 2; }
 if ! git -C "$repo" cat-file -e "$commit^{commit}" 2>/dev/null; then
-  echo "speedup: commit '$commit' is not in this clone's history (a shallow clone: git fetch --unshallow)" >&2
+  echo "speedup: no commit '$commit' in this clone's history (a shallow clone lacks the old ones: git fetch --unshallow)" >&2
   exit 2
 fi
 work=$(mktemp -d)
@@ -25,12 +25,13 @@ build() {
   local src=$1 out=$2 flags=(-O3 -DNDEBUG -std=gnu++17 -I"$1/include" -I/usr/include/eigen3)
   mkdir -p "$out"
   sed 's/@EMBEDDED_MAZE_ENTRIES@//' "$src/src/core/embedded_mazes.cpp.in" >"$out/embedded_mazes.cpp"
-  local f
+  local f pid pids=()
   for f in "$src"/src/core/*.cpp "$out/embedded_mazes.cpp"; do
     g++ "${flags[@]}" -c "$f" -o "$out/$(basename "$f" .cpp).o" &
-    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n; done
+    pids+=($!)
+    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do sleep 0.1; done
   done
-  wait
+  for pid in "${pids[@]}"; do wait "$pid"; done  # (a compile that failed stops the script)
   ar rcs "$out/libcore.a" "$out"/*.o
   g++ "${flags[@]}" -I"$repo/test/core" -I"$repo/bench" "$repo/bench/step_cost.cpp" \
     "$out/libcore.a" -o "$out/step_cost" -lbenchmark -lyaml-cpp -lpthread
@@ -41,7 +42,12 @@ build "$repo" "$work/now.build"
 
 for ((r = 1; r <= rounds; ++r)); do
   for which in then now; do
-    "$work/$which.build/step_cost" --benchmark_format=csv 2>/dev/null >"$work/$which.$r.csv"
+    if ! "$work/$which.build/step_cost" --benchmark_format=csv >"$work/$which.$r.csv" \
+      2>"$work/$which.err"; then
+      echo "speedup: the cases of $which failed:" >&2
+      cat "$work/$which.err" >&2
+      exit 1
+    fi
   done
 done
 /usr/bin/python3 - "$work" "$rounds" "$commit" <<'PY'

@@ -95,7 +95,8 @@ class Session {
  private:
   void apply(const TiltCommand& command);
   /// Whether `seconds` have passed since the simulated time `since`, both counted in whole steps
-  /// of the current length: at the step nearest that time, across a change of the step too.
+  /// of the current length: at the very step the steps count to while the step stays the same,
+  /// and within a step of that time across a change of the step.
   bool passed(double seconds, double since) const;
 
   SessionSettings settings_;

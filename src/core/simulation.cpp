@@ -176,6 +176,11 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
     refuse("place on the board where it is held is not finite, or more than 1e150 m away");
   const double time = in->get<double>();
   if (!std::isfinite(time)) throw std::runtime_error("snapshot: the simulated time is not finite");
+  // Below 2^50 steps a step's time is exact to a small part of a step, as the timed actions need
+  // (at 1 ms, some 36,000 years: no session runs that long).
+  if (!(std::abs(time) < 0x1p50 * params_.step))
+    throw std::runtime_error("snapshot: the simulated time " + exactText(time) +
+                             " s is more than 2^50 steps of " + exactText(params_.step) + " s");
   const auto steps = in->get<std::uint64_t>();
   // A state restored under the step it was saved with counts on from its origin, as the session
   // it was saved from does; under another step (a replay with other physics), or saved without
@@ -188,6 +193,16 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
     const double saved_step = in->get<double>();
     if (saved_steps_origin > steps || !std::isfinite(saved_time_origin))
       throw std::runtime_error("snapshot: its time counts from a step it has not reached");
+    if (!(std::isfinite(saved_step) && saved_step > 0))
+      throw std::runtime_error("snapshot: the step its time counts in, " + exactText(saved_step) +
+                               " s, is not a positive length");
+    // The time is its origin's plus the steps since times the step, as step() works it out.
+    const double counted =
+        saved_time_origin + static_cast<double>(steps - saved_steps_origin) * saved_step;
+    if (!(std::abs(time - counted) <= 1e-12 * std::abs(counted)))
+      throw std::runtime_error("snapshot: the simulated time " + exactText(time) +
+                               " s is not the time its steps count to (" + exactText(counted) +
+                               " s)");
     if (saved_step == params_.step) {
       time_origin = saved_time_origin;
       steps_origin = saved_steps_origin;

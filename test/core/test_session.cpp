@@ -25,6 +25,35 @@ Scene room(Params p = Params()) {
   return test::flatFloor(20, 20, 0.01, placed(p, {0, 0, kRadius}));
 }
 
+// Where Session::save (snapshot version 3) puts some of its values, in bytes from the start.
+namespace layout {
+constexpr std::size_t kPosition = 4, kVelocity = 28, kSpin = 52, kOrientation = 76, kPhase = 108,
+                      kContacts = 112, kDrive = 116, kTargetRoll = 136, kRoll = 168,
+                      kRotation = 184, kBoardSpin = 256, kHeld = 280, kTime = 304, kQueued = 344,
+                      kFirstCommand = 352;  // its step (8 bytes), kind (4), roll, pitch, order: 36
+}  // namespace layout
+
+template <typename T>
+T valueAt(const std::vector<std::uint8_t>& bytes, std::size_t at) {
+  T value;
+  std::memcpy(&value, bytes.data() + at, sizeof value);
+  return value;
+}
+
+template <typename T>
+std::vector<std::uint8_t> withValueAt(std::vector<std::uint8_t> bytes, std::size_t at, T value) {
+  std::memcpy(bytes.data() + at, &value, sizeof value);
+  return bytes;
+}
+
+/// A snapshot of version 3 as version 2 saved it: its timed actions' clocks as step counts.
+std::vector<std::uint8_t> asVersion2(std::vector<std::uint8_t> bytes, std::uint64_t last_command,
+                                     std::uint64_t finished) {
+  bytes = withValueAt<std::uint32_t>(bytes, 0, 2);
+  bytes = withValueAt(bytes, bytes.size() - 16, last_command);
+  return withValueAt(bytes, bytes.size() - 8, finished);
+}
+
 TEST(Session, ACommandTakesEffectAtItsStep) {
   Session s(room());
   s.command({100, TiltCommand::Kind::Angles, 0.05, -0.02});
@@ -75,8 +104,7 @@ TEST(Session, CommandsOfOneStepActInTheirOrderWhateverTheirArrival) {
   old.insert(old.end(), at(tail + command + count), at(tail + 8));
   old.insert(old.end(), at(tail), now.end());
   old[0] = 1;
-  const std::uint64_t last_command_step = 5;
-  std::memcpy(old.data() + old.size() - 16, &last_command_step, sizeof last_command_step);
+  old = withValueAt<std::uint64_t>(old, old.size() - 16, 5);
   Session c(room());
   c.restore(old);
   EXPECT_EQ(c.steps(), a.steps());
@@ -201,24 +229,69 @@ TEST(Session, TheTimedActionsKeepTheirTimeAcrossAChangeOfStep) {
     s->run(1);  // the step from 0.5 s
     EXPECT_EQ(s->simulation().board().roll(), 0.0);
   }
-  // The auto reset too: 0.2 s after the marble falls into a hole, whatever the step since.
+  // Rate commands run out 1 s after the last, the step doubled at 0.5 s: the board turns at
+  // 0.1 rad/s for the whole second (half of it when the clock counted steps).
+  Session rates(room());
+  rates.command({0, TiltCommand::Kind::Rates, 0.1, 0});
+  rates.run(500);
+  rates.setParams(coarse);
+  rates.run(260);
+  EXPECT_NEAR(rates.simulation().board().roll(), 0.1, 1e-12);
+  // The auto reset too: 0.2 s after the marble falls into a hole, whatever the step since, live
+  // and in a replay.
   Scene holed = room();
   for (int j : {9, 10})
     for (int i : {9, 10}) holed.maze.setSolid({i, j, 0}, false);
   settings.auto_reset = 0.2;
-  Session s(holed, settings);
-  while (s.simulation().marble().phase == MarblePhase::Free && s.steps() < 2000) s.run(1);
-  ASSERT_EQ(s.simulation().marble().phase, MarblePhase::InHole);
-  const double fell = s.simulation().time();
-  s.run(50);
-  Params fine = s.simulation().params();
+  Session fall(holed, settings);
+  while (fall.simulation().marble().phase == MarblePhase::Free && fall.steps() < 2000) fall.run(1);
+  ASSERT_EQ(fall.simulation().marble().phase, MarblePhase::InHole);
+  const double fell = fall.simulation().time();
+  fall.run(50);
+  Params fine = fall.simulation().params();
   fine.step = 0.0005;
-  s.setParams(fine);
-  s.run(299);  // checked after each step: the last at fell + 0.1995 s
-  EXPECT_NEAR(s.simulation().time() - fell, 0.1995, 1e-12);
-  EXPECT_EQ(s.simulation().marble().phase, MarblePhase::InHole);
-  s.run(1);
-  EXPECT_EQ(s.simulation().marble().phase, MarblePhase::Free);
+  Scene holed_fine = holed;
+  holed_fine.params = fine;
+  Session fall_replay(holed_fine, settings);
+  fall_replay.restore(fall.save());
+  fall.setParams(fine);
+  for (Session* s : {&fall, &fall_replay}) {
+    s->run(299);  // checked after each step: the last at fell + 0.1995 s
+    EXPECT_NEAR(s->simulation().time() - fell, 0.1995, 1e-12);
+    EXPECT_EQ(s->simulation().marble().phase, MarblePhase::InHole);
+    s->run(1);
+    EXPECT_EQ(s->simulation().marble().phase, MarblePhase::Free);
+  }
+}
+
+TEST(Session, AVersion2SnapshotsTimedActionsCountStepsAsBefore) {
+  // Recorded before version 3, the clocks are step counts: restored, they count steps of the
+  // restoring session's length, as they did then. A tilt timeout of 0.5 s after a command at
+  // step 0, saved at step 100: under the same step it levels the board at step 500, as the
+  // session it was saved from does; under half the step, 900 steps after the restore (0.55 s).
+  SessionSettings settings;
+  settings.tilt_timeout = 0.5;
+  Session a(room(), settings);
+  a.command({0, TiltCommand::Kind::Angles, 0.05, 0.05});
+  a.run(100);
+  const std::vector<std::uint8_t> old = asVersion2(a.save(), 0, 0);
+  Session b(room(), settings);
+  b.restore(old);
+  a.run(400);
+  b.run(400);
+  EXPECT_DOUBLE_EQ(b.simulation().board().roll(), 0.05);
+  a.run(1);
+  b.run(1);
+  EXPECT_EQ(b.simulation().board().roll(), 0.0);
+  EXPECT_EQ(b.simulation().marble().position, a.simulation().marble().position);
+  Params fine = room().params;
+  fine.step = 0.0005;
+  Session c(test::flatFloor(20, 20, 0.01, fine), settings);
+  c.restore(old);
+  c.run(900);
+  EXPECT_DOUBLE_EQ(c.simulation().board().roll(), 0.05);
+  c.run(1);
+  EXPECT_EQ(c.simulation().board().roll(), 0.0);
 }
 
 TEST(Session, PlaceRefusesATileOrOffTheBoardAndChangesNothing) {
@@ -349,27 +422,6 @@ TEST(Session, ARestoredBoardMovesAsTheRestoringSessionsServoAndLimitsSay) {
   EXPECT_NEAR(d.simulation().board().roll() - start, 0.1 * 10 * limited.step, 1e-12);
 }
 
-// Where Session::save (snapshot version 3) puts some of its values, in bytes from the start.
-namespace layout {
-constexpr std::size_t kPosition = 4, kVelocity = 28, kSpin = 52, kOrientation = 76, kPhase = 108,
-                      kContacts = 112, kDrive = 116, kTargetRoll = 136, kRoll = 168,
-                      kRotation = 184, kBoardSpin = 256, kHeld = 280, kTime = 304, kQueued = 344,
-                      kFirstCommand = 352;  // its step (8 bytes), kind (4), roll, pitch, order: 36
-}  // namespace layout
-
-template <typename T>
-T valueAt(const std::vector<std::uint8_t>& bytes, std::size_t at) {
-  T value;
-  std::memcpy(&value, bytes.data() + at, sizeof value);
-  return value;
-}
-
-template <typename T>
-std::vector<std::uint8_t> withValueAt(std::vector<std::uint8_t> bytes, std::size_t at, T value) {
-  std::memcpy(bytes.data() + at, &value, sizeof value);
-  return bytes;
-}
-
 TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
   // A bag's snapshot may have gone bad or been made by hand: a state no session reaches is
   // refused with the value it names, and the session stays as it was, rather than stepping into
@@ -413,6 +465,10 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
       {withValueAt(saved, layout::kHeld + 8, nan), "where it is held is not finite"},
       {withValueAt(saved, layout::kHeld, 1.7e308), "where it is held is not finite, or more"},
       {withValueAt(saved, layout::kTime, nan), "the simulated time is not finite"},
+      {withValueAt(saved, layout::kTime, 1000.0),
+       "the simulated time 1000 s is not the time its steps count to (0.05 s)"},
+      {withValueAt(saved, layout::kTime, 1e13), "the simulated time 1e+13 s is more than 2^50"},
+      {withValueAt(saved, layout::kTime + 32, nan), "the step its time counts in, nan s, is not"},
       {withValueAt<std::int32_t>(saved, layout::kFirstCommand + 8, 7),
        "queued command 0's kind 7 is neither angles (0) nor rates (1)"},
       {withValueAt(saved, layout::kFirstCommand + 20, nan),
@@ -424,7 +480,9 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
       {withValueAt(saved, saved.size() - 16, 0.051),
        "the last command's time 0.051 s is not finite or after the state's"},
       {withValueAt(saved, saved.size() - 8, -inf), "the finish's time -inf s is not finite"},
+      {asVersion2(saved, 51, 0), "the last command's step 51 is after the state's"},
   };
+  ASSERT_NO_THROW(Session(room()).restore(asVersion2(saved, 5, 0)));  // (only the step is wrong)
   Session b(room());
   b.restore(saved);
   for (const auto& c : cases) {

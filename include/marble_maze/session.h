@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,10 @@ class Session {
   /// Drops the queued commands, the rest of the state kept (a replay's: the recorded inputs hold
   /// each command again as it acted).
   void dropQueued() { queue_.clear(); }
+  /// Moves each queued command not yet due (for a step after the current one) to the step
+  /// `step_of` gives it (none before the current one), in the queue's order: a node's commands
+  /// stamped ahead, after a change of the step's length, to their stamps' steps of the new one.
+  void retimeQueued(const std::function<std::uint64_t(const TiltCommand&)>& step_of);
   /// s of simulated time since the step the last command was applied at (since the start if
   /// none was).
   double timeSinceCommand() const { return sim_.time() - last_command_time_; }

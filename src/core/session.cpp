@@ -37,6 +37,12 @@ bool Session::command(const TiltCommand& command) {
   return false;
 }
 
+void Session::retimeQueued(const std::function<std::uint64_t(const TiltCommand&)>& step_of) {
+  for (TiltCommand& c : queue_)
+    if (c.step > sim_.steps()) c.step = std::max(sim_.steps(), step_of(c));
+  std::stable_sort(queue_.begin(), queue_.end(), actsBefore);
+}
+
 void Session::apply(const TiltCommand& command) {
   applied_.push_back(command);
   applied_.back().step = sim_.steps();

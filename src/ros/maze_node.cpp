@@ -170,7 +170,13 @@ void MazeNode::reanchor(const ros::Time& origin) {
 void MazeNode::keepingTime(const std::function<void()>& change) {
   const ros::Time stamp = stampNow();
   change();
-  if (clock_.anchored() && stepNs() != clock_.stepNs()) reanchor(stamp);
+  if (!clock_.anchored() || stepNs() == clock_.stepNs()) return;
+  reanchor(stamp);
+  // A command stamped ahead was queued for its stamp's step of the old length: it goes to the
+  // step of the new length its stamp falls on (its order is its stamp).
+  session_->retimeQueued([this](const marble_maze::TiltCommand& c) {
+    return clock_.stepAt(ros::Time().fromNSec(c.order), session_->steps());
+  });
 }
 
 void MazeNode::logInput(std::uint8_t kind, marble_maze::SimInput input) {

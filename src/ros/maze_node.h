@@ -56,7 +56,8 @@ class MazeNode {
   /// Ties the current step to ROS time `origin`, and says so on `inputs`.
   void reanchor(const ros::Time& origin);
   /// Runs `change` (another maze, other physics); a step of another length from then on is
-  /// re-anchored where the session stood, so that its steps keep to ROS time's rate.
+  /// re-anchored where the session stood, so that its steps keep to ROS time's rate, and the
+  /// commands stamped ahead go to their stamps' steps of that length.
   void keepingTime(const std::function<void()>& change);
   std::int64_t stepNs() const { return std::llround(step() * 1e9); }
   /// How many steps one callback may take, following ROS time or a real-time factor, at the

@@ -264,6 +264,29 @@ TEST(Session, TheTimedActionsKeepTheirTimeAcrossAChangeOfStep) {
   }
 }
 
+TEST(Session, QueuedCommandsNotYetDueCanBeMovedToOtherSteps) {
+  // A node's commands stamped ahead, after a change of the step's length: those not yet due go
+  // to the steps they are given, in the queue's order; one due now stays, and none goes back
+  // before the current step.
+  Session s(room());
+  s.command({5, TiltCommand::Kind::Angles, 0.01, 0, 1});  // due at the current step
+  s.command({20, TiltCommand::Kind::Angles, 0.02, 0, 2});
+  s.command({30, TiltCommand::Kind::Angles, 0.03, 0, 3});
+  s.command({40, TiltCommand::Kind::Angles, 0.04, 0, 4});
+  s.run(5);
+  const std::uint64_t to[] = {0, 0, 50, 12, 3};  // by order: 20 to 50, 30 to 12, 40 to now
+  s.retimeQueued([&](const TiltCommand& c) { return to[c.order]; });
+  ASSERT_EQ(s.queued(), 4u);
+  s.run(1);  // at step 5: the due one and the one sent back
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.04);
+  s.run(7);  // steps 6 to 12: the one moved to 12
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.03);
+  s.run(37);  // to step 49
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.03);
+  s.run(1);
+  EXPECT_DOUBLE_EQ(s.simulation().board().roll(), 0.02);
+}
+
 TEST(Session, AVersion2SnapshotsTimedActionsCountStepsAsBefore) {
   // Recorded before version 3, the clocks are step counts: restored, they count steps of the
   // restoring session's length, as they did then. A tilt timeout of 0.5 s after a command at

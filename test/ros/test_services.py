@@ -17,7 +17,8 @@
   - a microsecond step of 1000 substeps set live leaves the node answering its services within
     10 s, /diagnostics saying it fell behind; a `step` call of more than 1e7 substeps is refused;
   - steps taken while paused put the simulation ahead of ROS time: /diagnostics says so, and
-    states come again once ROS time has caught up.
+    states come again once ROS time has caught up;
+  - a tilt stamped 1 s ahead, the step set to 2 ms meanwhile, turns the board from its stamp on.
 """
 import math
 import os
@@ -327,6 +328,29 @@ class ServicesTest(unittest.TestCase):
             said = [st.message for a in self.diagnostics.all[seen:] for st in a.status]
         self.assertTrue(said, "no /diagnostics after the catch-up")
         self.assertFalse([m for m in said if "below the" in m], said)
+
+    def test_9b_a_command_stamped_ahead_keeps_its_stamp_across_a_new_step(self):
+        # A tilt stamped 1 s ahead waits in the queue for its stamp's step; the step set to 2 ms
+        # meanwhile (dynamic_reconfigure) moves it to its stamp's step of the new length: the
+        # board turns from the stamp on, not 0.8 s late, as when it kept its step of the old.
+        client = Client(NODE, timeout=20)
+        try:
+            ahead = rospy.get_rostime() + rospy.Duration(1.0)
+            command = BoardTilt(roll=0.05)
+            command.header.stamp = ahead
+            self.tilt.publish(command)
+            time.sleep(0.2)
+            client.update_configuration({"step": 0.002})
+            turned = self.states.wait(
+                lambda m: m.header.stamp > ahead - rospy.Duration(0.5) and m.roll != 0.0,
+                timeout=5)
+            self.assertIsNotNone(turned, "the board never turned")
+            late = (turned.header.stamp - ahead).to_sec()
+            self.assertGreaterEqual(late, 0.0)
+            self.assertLess(late, 0.1)  # (states come at ~publish_rate)
+        finally:
+            client.update_configuration({"step": 0.001})
+            self.tilt.publish(BoardTilt())  # level again, at once
 
 
 if __name__ == "__main__":

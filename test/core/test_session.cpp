@@ -54,6 +54,24 @@ std::vector<std::uint8_t> asVersion2(std::vector<std::uint8_t> bytes, std::uint6
   return withValueAt(bytes, bytes.size() - 8, finished);
 }
 
+/// The room with a 2 cm hole under the start.
+Scene holedRoom() {
+  Scene scene = room();
+  for (int j : {9, 10})
+    for (int i : {9, 10}) scene.maze.setSolid({i, j, 0}, false);
+  return scene;
+}
+
+/// A session whose 0.5 s tilt timeout is running: a command at step 0, then 100 steps of 1 ms.
+Session timingOut() {
+  SessionSettings settings;
+  settings.tilt_timeout = 0.5;
+  Session s(room(), settings);
+  s.command({0, TiltCommand::Kind::Angles, 0.05, 0.05});
+  s.run(100);
+  return s;
+}
+
 TEST(Session, ACommandTakesEffectAtItsStep) {
   Session s(room());
   s.command({100, TiltCommand::Kind::Angles, 0.05, -0.02});
@@ -188,9 +206,7 @@ TEST(Session, RateCommandsRunOutAfterTheRateTimeoutButTargetsHold) {
 }
 
 TEST(Session, AutoResetPutsTheMarbleBackAtItsStep) {
-  Scene scene = room();
-  for (int j : {9, 10})
-    for (int i : {9, 10}) scene.maze.setSolid({i, j, 0}, false);  // a 2 cm hole under the start
+  const Scene scene = holedRoom();
   SessionSettings settings;
   settings.auto_reset = 0.2;
   Session s(scene, settings);
@@ -211,11 +227,8 @@ TEST(Session, TheTimedActionsKeepTheirTimeAcrossAChangeOfStep) {
   // live (setParams) or in a replay (a snapshot restored under the new step); the board still
   // levels at 0.5 s, not when as many steps of the new length have passed as it counted of the
   // old (0.4 s when the clock counted steps).
-  SessionSettings settings;
-  settings.tilt_timeout = 0.5;
-  Session live(room(), settings);
-  live.command({0, TiltCommand::Kind::Angles, 0.05, 0.05});
-  live.run(100);
+  Session live = timingOut();
+  SessionSettings settings = live.settings();
   const std::vector<std::uint8_t> at_100ms = live.save();
   Params coarse = live.simulation().params();
   coarse.step = 0.002;
@@ -239,9 +252,7 @@ TEST(Session, TheTimedActionsKeepTheirTimeAcrossAChangeOfStep) {
   EXPECT_NEAR(rates.simulation().board().roll(), 0.1, 1e-12);
   // The auto reset too: 0.2 s after the marble falls into a hole, whatever the step since, live
   // and in a replay.
-  Scene holed = room();
-  for (int j : {9, 10})
-    for (int i : {9, 10}) holed.maze.setSolid({i, j, 0}, false);
+  const Scene holed = holedRoom();
   settings.auto_reset = 0.2;
   Session fall(holed, settings);
   while (fall.simulation().marble().phase == MarblePhase::Free && fall.steps() < 2000) fall.run(1);
@@ -292,11 +303,8 @@ TEST(Session, AVersion2SnapshotsTimedActionsCountStepsAsBefore) {
   // restoring session's length, as they did then. A tilt timeout of 0.5 s after a command at
   // step 0, saved at step 100: under the same step it levels the board at step 500, as the
   // session it was saved from does; under half the step, 900 steps after the restore (0.55 s).
-  SessionSettings settings;
-  settings.tilt_timeout = 0.5;
-  Session a(room(), settings);
-  a.command({0, TiltCommand::Kind::Angles, 0.05, 0.05});
-  a.run(100);
+  Session a = timingOut();
+  const SessionSettings& settings = a.settings();
   const std::vector<std::uint8_t> old = asVersion2(a.save(), 0, 0);
   Session b(room(), settings);
   b.restore(old);

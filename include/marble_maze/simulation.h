@@ -64,9 +64,11 @@ class Simulation {
   explicit Simulation(const Scene& scene);
 
   /// New physics from the next step on, the state kept (a tilt beyond a new limit is brought
-  /// within it). Throws ParamError, changing nothing, when they are inconsistent.
+  /// within it). Throws ParamError, changing nothing, when they are inconsistent, or when the
+  /// time is 2^50 of the new steps or more (a step too short to time it closely).
   void setParams(const Params& params);
   SimulationState state() const;
+  /// Throws ParamError, changing nothing, when the state's time is 2^50 steps or more.
   void restore(const SimulationState& state);
   /// The state as bytes, bit for bit (the scene, maze and physics, is not in them).
   void save(ByteWriter* out) const;

@@ -45,6 +45,14 @@ std::string whyTooFast(const Marble& m, const Params& params) {
   return surface.empty() ? "" : "surface's speed from its spin, " + surface;
 }
 
+/// Why steps of `step` cannot time the simulated time `time` closely enough for the timed
+/// actions (2^50 of them or more: at 1 ms some 36,000 years, which no session runs), or "".
+std::string whyTooManySteps(double time, double step) {
+  if (std::abs(time) < 0x1p50 * step) return "";
+  return "the simulated time " + exactText(time) + " s is 2^50 steps of " + exactText(step) +
+         " s or more";
+}
+
 }  // namespace
 
 Simulation::Simulation(const Scene& scene)
@@ -86,6 +94,8 @@ void Simulation::setParams(const Params& params) {
   // A free marble stays one a step resolves, as place requires and a snapshot's restore checks.
   const std::string too_fast = whyTooFast(marble_, params);
   if (!too_fast.empty()) throw ParamError("step/marble_radius: the marble's " + too_fast);
+  const std::string too_many = whyTooManySteps(time_, params.step);
+  if (!too_many.empty()) throw ParamError("step: " + too_many);
   params_ = params;
   board_.setLimits(params_);
   solver_ = ContactSolver(params_);
@@ -104,6 +114,8 @@ SimulationState Simulation::state() const {
 }
 
 void Simulation::restore(const SimulationState& state) {
+  const std::string too_many = whyTooManySteps(state.time, params_.step);
+  if (!too_many.empty()) throw ParamError("step: " + too_many);
   marble_ = state.marble;
   board_ = state.board;
   board_.setLimits(params_);
@@ -176,11 +188,9 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
     refuse("place on the board where it is held is not finite, or more than 1e150 m away");
   const double time = in->get<double>();
   if (!std::isfinite(time)) throw std::runtime_error("snapshot: the simulated time is not finite");
-  // Below 2^50 steps a step's time is exact to a small part of a step, as the timed actions need
-  // (at 1 ms, some 36,000 years: no session runs that long).
-  if (!(std::abs(time) < 0x1p50 * params_.step))
-    throw std::runtime_error("snapshot: the simulated time " + exactText(time) +
-                             " s is more than 2^50 steps of " + exactText(params_.step) + " s");
+  // (No session has a time it could not restore: setParams and load refuse a step this refuses.)
+  const std::string too_many = whyTooManySteps(time, params_.step);
+  if (!too_many.empty()) throw std::runtime_error("snapshot: " + too_many);
   const auto steps = in->get<std::uint64_t>();
   // A state restored under the step it was saved with counts on from its origin, as the session
   // it was saved from does; under another step (a replay with other physics), or saved without

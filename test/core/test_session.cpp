@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -498,7 +499,8 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
       {withValueAt(saved, layout::kTime, nan), "the simulated time is not finite"},
       {withValueAt(saved, layout::kTime, 1000.0),
        "the simulated time 1000 s is not the time its steps count to (0.05 s)"},
-      {withValueAt(saved, layout::kTime, 1e13), "the simulated time 1e+13 s is more than 2^50"},
+      {withValueAt(saved, layout::kTime, 1e13),
+       "the simulated time 1e+13 s is 2^50 steps of 0.001 s or more"},
       {withValueAt(saved, layout::kTime + 32, nan), "the step its time counts in, nan s, is not"},
       {withValueAt<std::int32_t>(saved, layout::kFirstCommand + 8, 7),
        "queued command 0's kind 7 is neither angles (0) nor rates (1)"},
@@ -513,7 +515,8 @@ TEST(Session, ASnapshotNoSessionSavesIsRefusedNamingWhatIsWrong) {
       {withValueAt(saved, saved.size() - 8, -inf), "the finish's time -inf s is not finite"},
       {asVersion2(saved, 51, 0), "the last command's step 51 is after the state's"},
   };
-  ASSERT_NO_THROW(Session(room()).restore(asVersion2(saved, 5, 0)));  // (only the step is wrong)
+  // (The same snapshot with the last command's step not after the state's restores.)
+  ASSERT_NO_THROW(Session(room()).restore(asVersion2(saved, 5, 0)));
   Session b(room());
   b.restore(saved);
   for (const auto& c : cases) {
@@ -549,6 +552,34 @@ TEST(Session, NewPhysicsUnderWhichTheFreeMarbleIsTooFastAreRefused) {
   longer.step = 0.0011;                            // 5.45e5 m/s resolved: taken
   s.setParams(longer);
   EXPECT_EQ(s.simulation().params().step, 0.0011);
+}
+
+TEST(Session, AStepTooShortToTimeTheSessionIsRefused) {
+  // 2e9 s of simulated time (a snapshot's, its origin moved there) is more than 2^50 steps of
+  // 1e-6 s, too many to time the timed actions to a step: such a step is refused, live and with
+  // another maze, changing nothing, so that every state a session saves restores.
+  Session s(room());
+  s.run(50);
+  std::vector<std::uint8_t> bytes = withValueAt(s.save(), layout::kTime + 16, 2e9);
+  bytes = withValueAt(bytes, layout::kTime, 2e9 + static_cast<double>(50) * 0.001);
+  s.restore(bytes);
+  Params fine = s.simulation().params();
+  fine.step = 1e-6;
+  Scene fine_room = room();
+  fine_room.params.step = 1e-6;
+  const std::string says = "step: the simulated time 2000000000.05 s is 2^50 steps of 1e-06 s";
+  for (const auto& change :
+       std::vector<std::function<void()>>{[&] { s.setParams(fine); }, [&] { s.load(fine_room); }}) {
+    try {
+      change();
+      ADD_FAILURE() << "accepted";
+    } catch (const ParamError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(s.save(), bytes);  // unchanged
+  }
+  Session t(room());
+  t.restore(s.save());
 }
 
 TEST(Session, ParamsReadBackExactlyFromTheirText) {

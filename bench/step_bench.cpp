@@ -63,8 +63,8 @@ void fixedSteps(benchmark::internal::Benchmark* b) {
 /// The baseline: the step's fixed part. The marble falls from 1 m above the tilting board, far
 /// from every tile, for 0.4 s at a time.
 void BM_FreeFlight(benchmark::State& state) {
-  mm::Simulation sim(mm::bench::inFreeFlight(sceneOfSize(10)));
-  runSteps(state, &sim, 400);
+  mm::Simulation sim(mm::bench::inFreeFlight(sceneOfSize(mm::bench::kFreeFlightCells)));
+  runSteps(state, &sim, mm::bench::kFreeFlightRestart);
 }
 BENCHMARK(BM_FreeFlight)->Apply(fixedSteps);
 
@@ -72,8 +72,8 @@ BENCHMARK(BM_FreeFlight)->Apply(fixedSteps);
 /// under the circling tilt it never goes faster than 0.7 m/s, so it never reaches the walls 0.8 m
 /// away.
 void BM_OpenFloor(benchmark::State& state) {
-  mm::Simulation sim(sceneOfSize(-60));
-  runSteps(state, &sim, 1000);
+  mm::Simulation sim(sceneOfSize(-mm::bench::kOpenFloorCells));
+  runSteps(state, &sim, mm::bench::kOpenFloorRestart);
 }
 BENCHMARK(BM_OpenFloor)->Apply(fixedSteps);
 

@@ -12,14 +12,15 @@ namespace mm = marble_maze;
 namespace {
 
 void BM_FreeFlight(benchmark::State& state) {
-  mm::Simulation sim(mm::bench::inFreeFlight({mm::test::generatedMaze(10), mm::Params()}));
-  mm::bench::stepUnderCirclingTilt(state, &sim, 400);
+  mm::Simulation sim(mm::bench::inFreeFlight(
+      {mm::test::generatedMaze(mm::bench::kFreeFlightCells), mm::Params()}));
+  mm::bench::stepUnderCirclingTilt(state, &sim, mm::bench::kFreeFlightRestart);
 }
 BENCHMARK(BM_FreeFlight);
 
 void BM_OpenFloor(benchmark::State& state) {
-  mm::Simulation sim({mm::test::generatedMaze(60, false), mm::Params()});
-  mm::bench::stepUnderCirclingTilt(state, &sim, 1000);
+  mm::Simulation sim({mm::test::generatedMaze(mm::bench::kOpenFloorCells, false), mm::Params()});
+  mm::bench::stepUnderCirclingTilt(state, &sim, mm::bench::kOpenFloorRestart);
 }
 BENCHMARK(BM_OpenFloor);
 

@@ -17,6 +17,12 @@
 namespace marble_maze {
 namespace bench {
 
+// The cases' scenes and how often they start over, as make bench and make speedup both run them.
+constexpr int kFreeFlightCells = 10;             ///< the maze far under the falling marble
+constexpr std::size_t kFreeFlightRestart = 400;  ///< steps: 0.4 s of flight at a time
+constexpr int kOpenFloorCells = 60;              ///< an open floor of 60 x 60 cells, walled round
+constexpr std::size_t kOpenFloorRestart = 1000;  ///< steps: a second, too short to reach a wall
+
 /// The tilt programme, a step of `step` seconds at a time: a circling tilt of 0.1 rad, one turn
 /// in about 3 s, which keeps the marble rolling into walls; it repeats after 3142 steps.
 inline std::vector<std::pair<double, double>> circlingTilts(double step) {

@@ -234,7 +234,7 @@ TEST(Session, TheTimedActionsKeepTheirTimeAcrossAChangeOfStep) {
   Params coarse = live.simulation().params();
   coarse.step = 0.002;
   live.setParams(coarse);
-  Session replay(test::flatFloor(20, 20, 0.01, coarse), settings);
+  Session replay(room(coarse), settings);
   replay.restore(at_100ms);
   for (Session* s : {&live, &replay}) {
     s->run(200);  // the timeout checked at the start of each step, up to the one from 0.498 s
@@ -316,9 +316,9 @@ TEST(Session, AVersion2SnapshotsTimedActionsCountStepsAsBefore) {
   b.run(1);
   EXPECT_EQ(b.simulation().board().roll(), 0.0);
   EXPECT_EQ(b.simulation().marble().position, a.simulation().marble().position);
-  Params fine = room().params;
+  Params fine;
   fine.step = 0.0005;
-  Session c(test::flatFloor(20, 20, 0.01, fine), settings);
+  Session c(room(fine), settings);
   c.restore(old);
   c.run(900);
   EXPECT_DOUBLE_EQ(c.simulation().board().roll(), 0.05);
@@ -565,8 +565,7 @@ TEST(Session, AStepTooShortToTimeTheSessionIsRefused) {
   s.restore(bytes);
   Params fine = s.simulation().params();
   fine.step = 1e-6;
-  Scene fine_room = room();
-  fine_room.params.step = 1e-6;
+  const Scene fine_room = room(fine);
   const std::string says = "step: the simulated time 2000000000.05 s is 2^50 steps of 1e-06 s";
   for (const auto& change :
        std::vector<std::function<void()>>{[&] { s.setParams(fine); }, [&] { s.load(fine_room); }}) {

@@ -72,19 +72,22 @@ Simulation::Simulation(const Scene& scene)
   const std::string why = whyNotPlaceable(startInBoard());
   if (!why.empty()) {
     std::ostringstream message;
+    std::string key;
     if (params_.has_start_position) {
       // (The radius said too: a radius set over the file's can be what keeps the marble out.)
-      message << "start_position: a marble of radius " << exactText(params_.marble_radius)
+      key = "start_position";
+      message << key << ": a marble of radius " << exactText(params_.marble_radius)
               << " m cannot start there: " << why;
-      // Set by the maze file: the error points at it there, as the file's other errors do.
-      if (const Scene::FileKey* set = findFileKey(scene, "start_position"))
-        throw MazeFileError(scene.source, set->line, set->column, message.str());
     } else {
-      message << "marble_radius: a marble of radius " << params_.marble_radius
+      key = "marble_radius";
+      message << key << ": a marble of radius " << params_.marble_radius
               << " m does not fit the start cell (" << maze_.start().i << ", " << maze_.start().j
               << (scene.start_in_file.empty() ? "" : ", the 'S' at " + scene.start_in_file)
               << "): " << why;
     }
+    // Set by the maze file: the error points at it there, as the file's other errors do.
+    if (const Scene::FileKey* set = findFileKey(scene, key))
+      throw MazeFileError(scene.source, set->line, set->column, message.str());
     throw ParamError(message.str());
   }
 }

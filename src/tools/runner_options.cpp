@@ -8,11 +8,26 @@
 #include <limits>
 #include <ostream>
 #include <set>
+#include <sstream>
 
 #include "marble_maze/in_quotes.h"
 
 namespace marble_maze {
 namespace runner {
+
+namespace {
+
+/// Whether a physics refusal ("KEY: why", or "KEY/KEY: why") names a key one of `sets` gave.
+bool namesASetKey(const std::vector<std::pair<std::string, std::string>>& sets,
+                  const std::string& refusal) {
+  std::istringstream keys(refusal.substr(0, refusal.find(": ")));
+  for (std::string key; std::getline(keys, key, '/');)
+    for (const auto& set : sets)
+      if (set.first == key) return true;
+  return false;
+}
+
+}  // namespace
 
 void printHelp(std::ostream& out) {
   out <<
@@ -183,31 +198,31 @@ Run prepare(const Options& o) {
     for (const Scene::FileKey& set : scene.physics_keys)
       initial_tilt_set = initial_tilt_set || setsTilt(set.key);
     for (const auto& [key, value] : o.sets) {
-      overrideParam(&scene, key, value);
+      try {
+        overrideParam(&scene, key, value);
+      } catch (const ParamError& e) {  // its own value, or a key none knows
+        throw UsageError("--set " + std::string(e.what()));
+      }
       initial_tilt_set = initial_tilt_set || setsTilt(key);
     }
-  } catch (const MazeFileError& e) {
-    throw UsageError(e.what());
-  } catch (const ParamError& e) {
-    throw UsageError(std::string("--set ") + e.what());
-  }
-  // Clamped to the tilt limit as the node clamps a command, and said as the node says it.
-  if (o.tilt.largestTilt() > scene.params.tilt_limit)
-    std::cerr << "simulate: the tilt program asks for up to " << o.tilt.largestTilt()
-              << " rad, beyond tilt_limit " << scene.params.tilt_limit << " rad; clamped\n";
-  // The board starts where the tilt program starts (within the tilt limit, as every tilt), so
-  // that a constant tilt is an incline from t = 0.
-  if (!initial_tilt_set) {
-    const double limit = scene.params.tilt_limit;
-    scene.params.initial_roll = std::clamp(o.tilt.at(0).roll, -limit, limit);
-    scene.params.initial_pitch = std::clamp(o.tilt.at(0).pitch, -limit, limit);
-  }
-  try {
+    // Clamped to the tilt limit as the node clamps a command, and said as the node says it.
+    if (o.tilt.largestTilt() > scene.params.tilt_limit)
+      std::cerr << "simulate: the tilt program asks for up to " << o.tilt.largestTilt()
+                << " rad, beyond tilt_limit " << scene.params.tilt_limit << " rad; clamped\n";
+    // The board starts where the tilt program starts (within the tilt limit, as every tilt), so
+    // that a constant tilt is an incline from t = 0.
+    if (!initial_tilt_set) {
+      const double limit = scene.params.tilt_limit;
+      scene.params.initial_roll = std::clamp(o.tilt.at(0).roll, -limit, limit);
+      scene.params.initial_pitch = std::clamp(o.tilt.at(0).pitch, -limit, limit);
+    }
     run.sim = std::make_unique<Simulation>(scene);
   } catch (const MazeFileError& e) {
     throw UsageError(e.what());
   } catch (const ParamError& e) {
-    throw UsageError(e.what());
+    // (A value the maze file or a --set gave, refused with the rest: named as a --set when one
+    // gave it.)
+    throw UsageError((namesASetKey(o.sets, e.what()) ? "--set " : "") + std::string(e.what()));
   }
   return run;
 }

@@ -287,6 +287,30 @@ TEST(MazeFileError, AStartPositionInAWallNamesItsPlaceInTheFile) {
   }
 }
 
+// A marble_radius the file sets too wide for its start cell: the error points at the value too.
+TEST(MazeFileError, AMarbleWiderThanItsStartCellNamesTheRadiusPlaceInTheFile) {
+  const Scene scene =
+      parseScene(kGrid + kLayout + "physics:\n  marble_radius: 0.011\n", "bad.yaml");
+  try {
+    Simulation sim(scene);
+    ADD_FAILURE() << "a marble wider than its cell was accepted";
+  } catch (const MazeFileError& e) {
+    EXPECT_EQ(e.line, 10);
+    EXPECT_EQ(e.column, 18);
+    EXPECT_NE(std::string(e.what()).find("bad.yaml:10:18: marble_radius: a marble of radius 0.011 "
+                                         "m does not fit the start cell (1, 1, the 'S' at "
+                                         "bad.yaml:7:4)"),
+              std::string::npos)
+        << e.what();
+  }
+  // Set over the file's (a --set, a node's parameter), it is no longer the file's to answer for.
+  Scene over = scene;
+  overrideParam(&over, "marble_radius", "0.011");
+  EXPECT_THROW(Simulation{over}, ParamError);
+  overrideParam(&over, "marble_radius", "0.006");
+  EXPECT_NO_THROW(Simulation{over});
+}
+
 TEST(MazeFileError, UnknownPhysicsKeyNamesTheKeyAndLine) {
   EXPECT_TRUE(failsWith(kGrid + kLayout + "physics:\n  model: smooth\n  restitutoin: 0.2\n",
                         "bad.yaml:11:3:", "unknown parameter 'restitutoin'"));

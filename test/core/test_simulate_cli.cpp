@@ -134,9 +134,10 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--every 1e300", "--every: expected a whole number from 1 to 2147483647"},
       {"--every 2.5", "--every: expected a whole number"},
       {"--set start_position=0,0,0.006",
-       "start_position: a marble of radius 0.006 m cannot start there: inside tile (10, 8, 1)"},
-
-      {"--set marble_radius=0.015", "marble_radius: a marble of radius 0.015 m does not fit"},
+       "--set start_position: a marble of radius 0.006 m cannot start there: inside tile (10, 8, "
+       "1)"},
+      // (Refused with the rest of the scene, the value is still named as the --set's.)
+      {"--set marble_radius=0.015", "--set marble_radius: a marble of radius 0.015 m does not fit"},
       {"--set marble_radius=0.015", "start cell (1, 15, the 'S' at <embedded:classic>:13:4)"},
       {"--maze /dev/zero", "/dev/zero: more than 16 MB"},  // a device read without end
       {"--tilt-csv /dev/zero", "--tilt-csv: /dev/zero: more than 16 MB"},
@@ -161,6 +162,23 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_NE(r.output.find(message), std::string::npos) << args << " -> " << r.output;
   }
+}
+
+TEST(SimulateCli, ARefusalNamesTheSetOnlyWhenASetGaveTheValue) {
+  // Cells 10 mm wide: the default 6 mm marble does not fit its start cell, whatever is set.
+  const std::string maze = tempPath("narrow.yaml");
+  std::ofstream(maze) << "grid:\n  x: [0.005, 0.01]\n  y: [0.005, 0.01]\n  z: [0.005, 0.012]\n"
+                         "layout: |\n  +-+-+-+\n  |S   G|\n  +-+-+-+\n";
+  const Result other = runSimulate("--maze " + maze + " --set restitution=0.5");
+  EXPECT_EQ(other.status, 2);
+  EXPECT_NE(other.output.find("simulate: marble_radius: a marble of radius 0.006 m does not fit"),
+            std::string::npos)
+      << other.output;
+  const Result set = runSimulate("--maze " + maze + " --set marble_radius=0.006");
+  EXPECT_EQ(set.status, 2);
+  EXPECT_NE(set.output.find("simulate: --set marble_radius: a marble of radius 0.006 m"),
+            std::string::npos)
+      << set.output;
 }
 
 TEST(SimulateCli, EachIntegratorAndPresetRunsAndAWrongOneIsRefusedWithTheChoices) {

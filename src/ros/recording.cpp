@@ -105,8 +105,8 @@ Recording readRecording(const std::string& path) {
   return r;
 }
 
-mm::Params Replayer::paramsOf(const std::string& text) const {
-  mm::Params params = mm::paramsFromText(text);
+mm::Params Replayer::paramsOf(const mm::Params& recorded) const {
+  mm::Params params = recorded;
   for (const auto& [key, value] : overrides_) mm::setParam(params, key, value);
   mm::validate(params);
   return params;
@@ -115,7 +115,8 @@ mm::Params Replayer::paramsOf(const std::string& text) const {
 Replayer::Replayer(const Recording& recording, const Overrides& overrides)
     : recording_(recording), overrides_(overrides) {
   mm::Scene scene = mm::parseScene(recording.scene.maze_text, recording.scene.maze_source);
-  mm::replaceParams(&scene, paramsOf(recording.snapshot.params));
+  const mm::Params recorded = mm::paramsFromText(recording.snapshot.params);
+  mm::replaceParams(&scene, paramsOf(recorded));
   mm::SessionSettings settings;
   settings.tilt_timeout = recording.scene.tilt_timeout;
   settings.rate_timeout = recording.scene.rate_timeout;
@@ -129,13 +130,13 @@ Replayer::Replayer(const Recording& recording, const Overrides& overrides)
   // board 2 mrad ahead, a millisecond of its rate limit).
   session_->dropQueued();
   const mm::SimSnapshot& snapshot = recording.snapshot;
-  const auto recorded_ns = std::llround(mm::paramsFromText(snapshot.params).step * 1e9);
+  const auto recorded_ns = std::llround(recorded.step * 1e9);
   clock_.anchor(snapshot.anchor_stamp, snapshot.anchor_step, snapshot.anchor_time, recorded_ns);
   followStep();  // under another step (--set step=...), on from the snapshot's stamp
-  scheduleInputs();
+  scheduleInputs(recorded.step);
 }
 
-void Replayer::scheduleInputs() {
+void Replayer::scheduleInputs(double snapshot_step) {
   // Each input acts at the simulated time it acted at in the session: at its own step while the
   // replay's step is the session's, and at the first step at or after that time under another
   // (--set step=...). The time runs on in stretches of one step length, each begun at a load or
@@ -143,7 +144,7 @@ void Replayer::scheduleInputs() {
   const auto& inputs = recording_.inputs;
   due_.resize(inputs.size());
   std::uint64_t recorded_from = session_->steps(), replayed_from = session_->steps();
-  double recorded_step = mm::paramsFromText(recording_.snapshot.params).step;
+  double recorded_step = snapshot_step;
   double replayed_step = session_->simulation().params().step;
   double recorded_at = 0, replayed_at = 0;  // s of simulated time since the snapshot
   std::uint64_t earliest = replayed_from;   // inputs stay in their order
@@ -162,8 +163,9 @@ void Replayer::scheduleInputs() {
       recorded_at = at;
       recorded_from = in.step;
       replayed_from = due_[i];
-      recorded_step = mm::paramsFromText(in.params).step;
-      replayed_step = paramsOf(in.params).step;
+      const mm::Params recorded = mm::paramsFromText(in.params);
+      recorded_step = recorded.step;
+      replayed_step = paramsOf(recorded).step;
     }
   }
 }
@@ -205,10 +207,10 @@ std::vector<const marble_maze::SimInput*> Replayer::applyDue() {
         try {
           if (in.kind == K::LOAD) {
             mm::Scene scene = mm::parseScene(in.maze_text, in.maze_source);
-            mm::replaceParams(&scene, paramsOf(in.params));
+            mm::replaceParams(&scene, paramsOf(mm::paramsFromText(in.params)));
             session_->load(scene);
           } else {
-            session_->setParams(paramsOf(in.params));
+            session_->setParams(paramsOf(mm::paramsFromText(in.params)));
           }
         } catch (const std::runtime_error& e) {
           if (overrides_.empty()) throw;  // (what the bag holds: said as it is)

@@ -55,12 +55,14 @@ class Replayer {
   ros::Time end() const;
 
  private:
-  marble_maze::Params paramsOf(const std::string& text) const;
+  /// The recorded parameters with the overrides set over them, checked.
+  marble_maze::Params paramsOf(const marble_maze::Params& recorded) const;
   /// After a load, a reconfigure or a step set over the recorded one: the clock goes on at the
   /// step length now in force, from where the steps stand.
   void followStep();
-  /// Works out the step of the replay at which each input acts (due_).
-  void scheduleInputs();
+  /// Works out the step of the replay at which each input acts (due_), from the snapshot's
+  /// recorded step length on.
+  void scheduleInputs(double snapshot_step);
 
   const Recording& recording_;
   Overrides overrides_;

@@ -53,6 +53,7 @@ Runs the marble_maze physics without ROS and reports what happened.
                        with --set: other physics make other states)
   --help, -h           this text
 
+Each flag but --set is given once, and --tilt and --tilt-csv not together.
 The board starts at the tilt program's first value unless initial_roll or initial_pitch is set
 (by --set or in the maze file's physics section).
 
@@ -116,7 +117,13 @@ Options parseOptions(const std::vector<std::string>& args) {
     // The flag's value, the next argument; a flag known to take one is reported without it.
     const auto value_of = [&]() -> const std::string& {
       if (i + 1 >= argc) throw UsageError(flag + ": needs a value");
-      given.insert(flag);
+      // (Only --set adds to what it gave; another given again would silently undo the first.)
+      if (!given.insert(flag).second && flag != "--set")
+        throw UsageError(flag + ": given twice (" + inQuotes(args[i + 1]) + " after the first)");
+      // Each is the whole tilt program: the one would silently replace the other.
+      for (const auto& [one, other] : {std::pair{"--tilt", "--tilt-csv"}, {"--tilt-csv", "--tilt"}})
+        if (flag == one && given.count(other))
+          throw UsageError(flag + ": not with " + other + "; each gives the whole tilt program");
       return args[++i];
     };
     if (flag == "--maze") {

@@ -153,6 +153,10 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--out " + csv_again + " --events " + csv, "--events: '" + csv + "' is --out's too"},
       {"--out - --events /dev/stdout", "--events: '/dev/stdout' is --out's too"},
       {"--tilt 0.1,0.1,0.1", "--tilt: expected ROLL,PITCH, got '0.1,0.1,0.1'"},
+      // A flag given again would silently undo the first; a tilt program given twice likewise.
+      {"--maze classic --maze prototype", "--maze: given twice ('prototype' after the first)"},
+      {"--duration 1 --duration 2", "--duration: given twice ('2' after the first)"},
+      {"--tilt 0.1,0 --tilt-csv /nonexistent.csv", "--tilt-csv: not with --tilt"},
       // Other physics make other states: --check would only fail, or find nothing to compare.
       {"--bag session.bag --check --set preset=fast",
        "--check: not with --set (preset): the recorded states are those of the recorded physics"},

@@ -1,7 +1,7 @@
 // A tilt publisher gone wild, for flood.test: waits until its ~start parameter is true, then
 // publishes `tilt` at ~rate (10 kHz) for ~duration (10 s) of wall time, each command stamped
 // now and numbered in its roll (command k: k * 1e-7 rad, so that the order of those the node
-// applies can be checked), and then sets ~sent (how many) and ~done.
+// applies can be checked), and then sets ~sent (how many) and ~done, says so, and ends.
 #include <ros/ros.h>
 
 #include <cstdint>
@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
   }
   pnh.setParam("sent", static_cast<int>(sent));
   pnh.setParam("done", true);
-  ros::spin();
+  ROS_INFO("tilt_flood: sent %llu tilt commands in %g s", static_cast<unsigned long long>(sent),
+           duration);
+  // A moment for the commands still queued to go out (the publisher's queue, up to 1,000 of
+  // them, goes with the node), then done: a flood run by hand ends by itself.
+  ros::WallDuration(1.0).sleep();
   return 0;
 }

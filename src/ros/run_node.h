@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <exception>
+#include <string>
 
 namespace marble_maze_ros {
 
@@ -22,7 +23,16 @@ int runNode(int argc, char** argv, const char* name) {
     Node node(nh, pnh);
     ros::spin();
   } catch (const std::exception& e) {
-    ROS_FATAL("%s", e.what());
+    // A refused parameter ("/node/key: why") stays on the parameter server when the node ends:
+    // one given by an earlier `rosrun ... _key:=` would refuse every start after it, so the
+    // way to clear it is said.
+    const std::string what = e.what(), name = what.substr(0, what.find(": "));
+    if (name.rfind(pnh.getNamespace() + "/", 0) == 0 && ros::param::has(name))
+      ROS_FATAL("%s\n(a value an earlier run left on the parameter server stays there until "
+                "`rosparam delete %s`)",
+                what.c_str(), name.c_str());
+    else
+      ROS_FATAL("%s", what.c_str());
     return 1;
   }
   return 0;

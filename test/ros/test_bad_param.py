@@ -85,6 +85,8 @@ class BadParamTest(unittest.TestCase):
     def test_restitution_out_of_range(self):
         output = self.check_refused("bp_one", ["_restitution:=2.0"], "restitution")
         self.assertIn("/bp_one/", output)  # named in full, in the node's private namespace
+        # It stays on the parameter server after the node: the way to clear it is said.
+        self.assertIn("rosparam delete /bp_one/restitution", output)
 
     def test_unknown_parameter(self):
         self.check_refused("bp_two", ["_restitushun:=1"], "restitushun", "unknown")

@@ -137,9 +137,10 @@ class AutopilotNode {
     playing_ = false;
     const double took = (s.header.stamp - started_).toSec();
     if (s.at_goal)
-      say(ros::console::levels::Info, "reached the goal in %.2f s", took);
+      say(ros::console::levels::Info, "reached the goal in %.2f s from the start of its route",
+          took);
     else
-      say(ros::console::levels::Warn, "the marble %s after %.2f s",
+      say(ros::console::levels::Warn, "the marble %s %.2f s into its route",
           s.in_hole ? "fell into a hole" : "left the board", took);
     publishTilt(0, 0);
   }

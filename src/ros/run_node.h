@@ -24,13 +24,19 @@ int runNode(int argc, char** argv, const char* name) {
     ros::spin();
   } catch (const std::exception& e) {
     // A refused parameter ("/node/key: why") stays on the parameter server when the node ends:
-    // one given by an earlier `rosrun ... _key:=` would refuse every start after it, so the
-    // way to clear it is said.
+    // given by `rosrun ... _key:=`, it would refuse the next start too, so the way to clear it
+    // is said.
     const std::string what = e.what(), name = what.substr(0, what.find(": "));
-    if (name.rfind(pnh.getNamespace() + "/", 0) == 0 && ros::param::has(name))
-      ROS_FATAL("%s\n(a value an earlier run left on the parameter server stays there until "
-                "`rosparam delete %s`)",
-                what.c_str(), name.c_str());
+    bool on_server = false;
+    try {
+      on_server = name.rfind(pnh.getNamespace() + "/", 0) == 0 && ros::param::has(name);
+    } catch (const ros::Exception&) {  // not a name at all (a message of another form)
+    }
+    if (on_server)
+      ROS_FATAL(
+          "%s\n(this value stays on the parameter server after the node ends: `rosparam "
+          "delete %s` clears it)",
+          what.c_str(), name.c_str());
     else
       ROS_FATAL("%s", what.c_str());
     return 1;

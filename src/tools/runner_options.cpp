@@ -17,14 +17,20 @@ namespace runner {
 
 namespace {
 
-/// Whether a physics refusal ("KEY: why", or "KEY/KEY: why") names a key one of `sets` gave.
-bool namesASetKey(const std::vector<std::pair<std::string, std::string>>& sets,
-                  const std::string& refusal) {
+/// Whether every key a physics refusal names ("KEY: why", or "KEY/KEY: why") was given by one of
+/// `sets`: only then is it the --sets' to answer for (with one of them the maze file's, or a
+/// default, it may be that one at fault).
+bool namesOnlySetKeys(const std::vector<std::pair<std::string, std::string>>& sets,
+                      const std::string& refusal) {
   std::istringstream keys(refusal.substr(0, refusal.find(": ")));
-  for (std::string key; std::getline(keys, key, '/');)
-    for (const auto& set : sets)
-      if (set.first == key) return true;
-  return false;
+  std::string key;
+  bool named = false;
+  while (std::getline(keys, key, '/')) {
+    if (std::none_of(sets.begin(), sets.end(), [&](const auto& set) { return set.first == key; }))
+      return false;
+    named = true;
+  }
+  return named;
 }
 
 }  // namespace
@@ -53,7 +59,7 @@ Runs the marble_maze physics without ROS and reports what happened.
                        with --set: other physics make other states)
   --help, -h           this text
 
-Each flag but --set is given once, and --tilt and --tilt-csv not together.
+Each flag that takes a value, but --set, is given once; --tilt and --tilt-csv not together.
 The board starts at the tilt program's first value unless initial_roll or initial_pitch is set
 (by --set or in the maze file's physics section).
 
@@ -121,9 +127,10 @@ Options parseOptions(const std::vector<std::string>& args) {
       if (!given.insert(flag).second && flag != "--set")
         throw UsageError(flag + ": given twice (" + inQuotes(args[i + 1]) + " after the first)");
       // Each is the whole tilt program: the one would silently replace the other.
-      for (const auto& [one, other] : {std::pair{"--tilt", "--tilt-csv"}, {"--tilt-csv", "--tilt"}})
-        if (flag == one && given.count(other))
-          throw UsageError(flag + ": not with " + other + "; each gives the whole tilt program");
+      if ((flag == "--tilt" && given.count("--tilt-csv")) ||
+          (flag == "--tilt-csv" && given.count("--tilt")))
+        throw UsageError(flag + ": not with " + (flag == "--tilt" ? "--tilt-csv" : "--tilt") +
+                         "; each gives the whole tilt program");
       return args[++i];
     };
     if (flag == "--maze") {
@@ -227,9 +234,9 @@ Run prepare(const Options& o) {
   } catch (const MazeFileError& e) {
     throw UsageError(e.what());
   } catch (const ParamError& e) {
-    // (A value the maze file or a --set gave, refused with the rest: named as a --set when one
-    // gave it.)
-    throw UsageError((namesASetKey(o.sets, e.what()) ? "--set " : "") + std::string(e.what()));
+    // (Values the maze file or --sets gave, refused with the rest: named as --set values when
+    // --sets gave them.)
+    throw UsageError((namesOnlySetKeys(o.sets, e.what()) ? "--set " : "") + std::string(e.what()));
   }
   return run;
 }

@@ -183,6 +183,24 @@ TEST(SimulateCli, ARefusalNamesTheSetOnlyWhenASetGaveTheValue) {
   EXPECT_NE(set.output.find("simulate: --set marble_radius: a marble of radius 0.006 m"),
             std::string::npos)
       << set.output;
+  // A refusal of two keys is the --sets' only when both are theirs: here the file's initial
+  // roll is beyond the tilt limit set, the initial pitch set blameless.
+  const std::string tilted = tempPath("tilted_start.yaml");
+  std::ofstream(tilted) << "grid:\n  x: [0.005, 0.02]\n  y: [0.005, 0.02]\n  z: [0.005, 0.012]\n"
+                           "layout: |\n  +-+-+-+\n  |S   G|\n  +-+-+-+\n"
+                           "physics:\n  initial_roll: 0.1\n";
+  const Result file =
+      runSimulate("--maze " + tilted + " --set initial_pitch=0 --set tilt_limit=0.05");
+  EXPECT_EQ(file.status, 2);
+  EXPECT_NE(file.output.find("simulate: initial_roll/initial_pitch: beyond tilt_limit 0.05"),
+            std::string::npos)
+      << file.output;
+  const Result both =
+      runSimulate("--set initial_roll=0.1 --set initial_pitch=0 --set tilt_limit=0.05");
+  EXPECT_EQ(both.status, 2);
+  EXPECT_NE(both.output.find("simulate: --set initial_roll/initial_pitch: beyond tilt_limit"),
+            std::string::npos)
+      << both.output;
 }
 
 TEST(SimulateCli, EachIntegratorAndPresetRunsAndAWrongOneIsRefusedWithTheChoices) {

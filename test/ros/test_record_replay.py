@@ -249,6 +249,18 @@ class RecordReplayTest(unittest.TestCase):
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("--bag: snapshot: the marble's phase 4 is none of free (0)", run.stderr)
         self.assertEqual(run.stdout, "")
+        # Parameters that went bad in the first snapshot: the bag's, not a --set's, refused.
+        bad_params = os.path.join(self.dir, "bad_params.bag")
+        with rosbag.Bag(self.session) as bag, rosbag.Bag(bad_params, "w") as out:
+            for topic, m, t in bag.read_messages():
+                if m._type == "marble_maze/SimSnapshot":
+                    self.assertIn("restitution=", m.params)
+                    m.params = re.sub(r"restitution=[^\n]*", "restitution=2", m.params)
+                out.write(topic, m, t)
+        run = subprocess.run([SIMULATE, "--bag", bad_params], capture_output=True, text=True,
+                             timeout=120)
+        self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
+        self.assertIn("simulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
         # The first snapshot recorded before the scene (two latched messages of one instant come
         # in either order, as a lockstep node's do): the replay starts from the next snapshot.
         swapped = os.path.join(self.dir, "snapshot_first.bag")

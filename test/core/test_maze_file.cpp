@@ -35,17 +35,19 @@ std::string errorOf(const std::string& text, const Params& defaults = Params()) 
   return "(no error)";
 }
 
-/// what() of the MazeFileError that a simulation of `scene` throws (its start checked against
-/// the maze), or what else it did.
-std::string simulationErrorOf(const Scene& scene) {
+/// Whether a simulation of `scene` refuses its start (checked against the maze) with a
+/// MazeFileError whose message begins with `prefix` ("bad.yaml:LINE:COLUMN: KEY: ...").
+::testing::AssertionResult startRefusedWith(const Scene& scene, const std::string& prefix) {
+  std::string what = "(no error)";
   try {
     Simulation sim(scene);
   } catch (const MazeFileError& e) {
-    return e.what();
+    what = e.what();
   } catch (const std::exception& e) {
-    return std::string("(not a MazeFileError: ") + e.what() + ")";
+    what = std::string("(not a MazeFileError: ") + e.what() + ")";
   }
-  return "(no error)";
+  if (what.rfind(prefix, 0) == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "expected '" << prefix << "...', got '" << what << "'";
 }
 
 /// Whether `text` fails at `location` ("bad.yaml:LINE:COLUMN:") with a message containing `phrase`.
@@ -262,11 +264,9 @@ TEST(MazeFileError, AStartPositionInAWallNamesItsPlaceInTheFile) {
   // (The left wall spans x = -0.0275 to -0.0225 m from the pivot.)
   const Scene scene =
       parseScene(kGrid + kLayout + "physics:\n  start_position: [-0.025, 0, 0.006]\n", "bad.yaml");
-  EXPECT_EQ(simulationErrorOf(scene).rfind("bad.yaml:10:19: start_position: a marble of radius "
-                                           "0.006 m cannot start there: inside tile",
-                                           0),
-            0u)
-      << simulationErrorOf(scene);
+  EXPECT_TRUE(startRefusedWith(scene,
+                               "bad.yaml:10:19: start_position: a marble of radius "
+                               "0.006 m cannot start there: inside tile"));
   Scene over = scene;
   overrideParam(&over, "start_position", "-0.025,0,0.006");
   EXPECT_EQ(findFileKey(over, "start_position"), nullptr);
@@ -282,24 +282,19 @@ TEST(MazeFileError, AStartPositionInAWallNamesItsPlaceInTheFile) {
       parseScene(kGrid + kLayout + "physics:\n  start_position: [-0.0125, 0, 0.006]\n", "bad.yaml");
   EXPECT_NO_THROW(Simulation{wider});
   overrideParam(&wider, "marble_radius", "0.009");
-  EXPECT_EQ(simulationErrorOf(wider).rfind("bad.yaml:10:19: start_position: a marble of radius "
-                                           "0.009 m cannot start there: inside tile",
-                                           0),
-            0u)
-      << simulationErrorOf(wider);
+  EXPECT_TRUE(startRefusedWith(wider,
+                               "bad.yaml:10:19: start_position: a marble of radius "
+                               "0.009 m cannot start there: inside tile"));
 }
 
 // A marble_radius the file sets too wide for its start cell: the error points at the value too.
 TEST(MazeFileError, AMarbleWiderThanItsStartCellNamesTheRadiusPlaceInTheFile) {
   const Scene scene =
       parseScene(kGrid + kLayout + "physics:\n  marble_radius: 0.011\n", "bad.yaml");
-  EXPECT_EQ(
-      simulationErrorOf(scene).rfind("bad.yaml:10:18: marble_radius: a marble of radius 0.011 "
-                                     "m does not fit the start cell (1, 1, the 'S' at "
-                                     "bad.yaml:7:4)",
-                                     0),
-      0u)
-      << simulationErrorOf(scene);
+  EXPECT_TRUE(startRefusedWith(scene,
+                               "bad.yaml:10:18: marble_radius: a marble of radius 0.011 "
+                               "m does not fit the start cell (1, 1, the 'S' at "
+                               "bad.yaml:7:4)"));
   // Set over the file's (a --set, a node's parameter), it is no longer the file's to answer for.
   Scene over = scene;
   overrideParam(&over, "marble_radius", "0.011");

@@ -35,6 +35,12 @@ bool namesOnlySetKeys(const std::vector<std::pair<std::string, std::string>>& se
 
 }  // namespace
 
+UsageError physicsRefusal(const Options& o, const ParamError& refusal,
+                          const std::string& otherwise) {
+  return UsageError((namesOnlySetKeys(o.sets, refusal.what()) ? "--set " : otherwise) +
+                    std::string(refusal.what()));
+}
+
 void printHelp(std::ostream& out) {
   out <<
       R"(Usage: simulate [OPTION]...
@@ -155,6 +161,14 @@ Options parseOptions(const std::vector<std::string>& args) {
       if (eq == std::string::npos || eq == 0)
         throw UsageError("--set: expected KEY=VALUE, got " + inQuotes(value));
       o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
+      // Its own value (a key none knows, a value out of its range) is the --set's whatever the
+      // maze or bag it is set over.
+      try {
+        Params probe;
+        setParam(probe, o.sets.back().first, o.sets.back().second);
+      } catch (const ParamError& e) {
+        throw UsageError("--set " + std::string(e.what()));
+      }
     } else if (flag == "--duration") {
       const std::string& value = value_of();
       o.duration = parseDouble(flag, value);
@@ -212,11 +226,7 @@ Run prepare(const Options& o) {
     for (const Scene::FileKey& set : scene.physics_keys)
       initial_tilt_set = initial_tilt_set || setsTilt(set.key);
     for (const auto& [key, value] : o.sets) {
-      try {
-        overrideParam(&scene, key, value);
-      } catch (const ParamError& e) {  // its own value, or a key none knows
-        throw UsageError("--set " + std::string(e.what()));
-      }
+      overrideParam(&scene, key, value);
       initial_tilt_set = initial_tilt_set || setsTilt(key);
     }
     // Clamped to the tilt limit as the node clamps a command, and said as the node says it.
@@ -233,10 +243,8 @@ Run prepare(const Options& o) {
     run.sim = std::make_unique<Simulation>(scene);
   } catch (const MazeFileError& e) {
     throw UsageError(e.what());
-  } catch (const ParamError& e) {
-    // (Values the maze file or --sets gave, refused with the rest: named as --set values when
-    // --sets gave them.)
-    throw UsageError((namesOnlySetKeys(o.sets, e.what()) ? "--set " : "") + std::string(e.what()));
+  } catch (const ParamError& e) {  // values the maze file or --sets gave, refused together
+    throw physicsRefusal(o, e, "");
   }
   return run;
 }

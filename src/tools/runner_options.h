@@ -36,6 +36,11 @@ struct Options {
   bool check = false;  // and compare with its recorded marble_state
 };
 
+/// A physics refusal ("KEY: why", or "KEY/KEY: why") of values --sets may have given: "--set"
+/// before it when every key it names a --set gave, else `otherwise` (where the rest came from).
+UsageError physicsRefusal(const Options& o, const ParamError& refusal,
+                          const std::string& otherwise);
+
 void printHelp(std::ostream& out);
 /// The options of `args` (the program's name left out); throws UsageError.
 Options parseOptions(const std::vector<std::string>& args);

@@ -125,8 +125,8 @@ int rerun(const Options& o) {
     replay = std::make_unique<marble_maze_ros::Replayer>(recording, o.sets);
   } catch (const mm::MazeFileError& e) {
     throw UsageError(std::string("--bag: ") + e.what());
-  } catch (const mm::ParamError& e) {  // the --set values, or without them the bag's own
-    throw UsageError(std::string(o.sets.empty() ? "--bag: " : "--set ") + e.what());
+  } catch (const mm::ParamError& e) {  // the bag's own values, or those --sets gave over them
+    throw mm::runner::physicsRefusal(o, e, "--bag: ");
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("--bag: ") + e.what());
   }

@@ -261,6 +261,11 @@ class RecordReplayTest(unittest.TestCase):
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("simulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
+        # (and so with another value set over the bag's)
+        run = subprocess.run([SIMULATE, "--bag", bad_params, "--set", "step=0.002"],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
+        self.assertIn("simulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
         # The first snapshot recorded before the scene (two latched messages of one instant come
         # in either order, as a lockstep node's do): the replay starts from the next snapshot.
         swapped = os.path.join(self.dir, "snapshot_first.bag")

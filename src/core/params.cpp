@@ -24,6 +24,7 @@ std::string Params::whyTooFast(double speed) const {
 
 /// The shortest text that reads back as exactly the same double.
 std::string exactText(double value) {
+  if (std::isnan(value)) return "nan";  // (its sign says nothing; printf would show "-nan")
   char text[32];
   for (int digits = 6; digits <= 17; ++digits) {
     std::snprintf(text, sizeof text, "%.*g", digits, value);
@@ -220,7 +221,7 @@ const std::vector<Entry>& entries() {
                   &Params::drag_coefficient, 0.0, 10.0)),
       number("air_density", "kg/m^3", "air density for the drag", &Params::air_density, 0.0, 100.0),
       live(number("step", "s", "fixed time step", &Params::step, 1e-6, 0.1)),
-      {{"substeps", "", "substeps per step (1..1000)", ParamInfo::Type::Whole, 1, 1000, {}, true},
+      {{"substeps", "", "substeps per step", ParamInfo::Type::Whole, 1, 1000, {}, true},
        [](Params& p, const std::string& text) {
          const double n = parseNumber("substeps", text, 1, 1000);
          if (n != std::floor(n))
@@ -278,7 +279,8 @@ const Entry& find(const std::string& key) {
     if (e.info.key == key) return e;
   std::string known;
   for (const auto& e : entries()) known += (known.empty() ? "" : ", ") + e.info.key;
-  throw ParamError("unknown parameter " + inQuotes(key) + " (known: " + known + ")");
+  // (Named first, as every other refusal of a key is: "KEY: what is wrong".)
+  throw ParamError(inQuotes(key) + ": unknown parameter (known: " + known + ")");
 }
 
 }  // namespace

@@ -79,7 +79,11 @@ Keys for --set (and for a maze file's physics section):
     const std::string name = info.key + (info.unit.empty() ? "" : " [" + info.unit + "]");
     char line[64];
     std::snprintf(line, sizeof line, "  %-26s ", name.c_str());
-    out << line << info.help << " (default " << getParam(Params(), info.key) << ")\n";
+    // (The range is the table's, the one setParam refuses a value beyond.)
+    const bool ranged = info.type == ParamInfo::Type::Number || info.type == ParamInfo::Type::Whole;
+    out << line << info.help
+        << (ranged ? ", in [" + exactText(info.min) + ", " + exactText(info.max) + "]" : "")
+        << " (default " << getParam(Params(), info.key) << ")\n";
   }
   out << "\nExit status: 0 done, 2 a wrong flag, value or maze file, 1 anything else.\n";
 }

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <limits>
 
 #include "marble_maze/params.h"
 
@@ -61,7 +63,17 @@ TEST(Params, BadValuesNameTheKeyAndWhatWasExpected) {
   EXPECT_EQ(errorOf("substeps", "2.5"), "substeps: expected a whole number, got '2.5'");
   EXPECT_NE(errorOf("start_position", "1,2").find("start_position: expected three"),
             std::string::npos);
-  EXPECT_NE(errorOf("restitushun", "1").find("unknown parameter 'restitushun'"), std::string::npos);
+  EXPECT_NE(errorOf("restitushun", "1").find("'restitushun': unknown parameter"),
+            std::string::npos);
+}
+
+TEST(ExactText, ReadsBackExactlyAndSaysNanWithoutASign) {
+  for (double v : {0.1, 1.0 / 3, 1e-300, -2.5, 0.17453292519943295, 5e-324})
+    EXPECT_EQ(std::strtod(exactText(v).c_str(), nullptr), v) << exactText(v);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(exactText(nan), "nan");
+  EXPECT_EQ(exactText(-nan), "nan");  // a sign that printf would show as "-nan"
+  EXPECT_EQ(exactText(-std::numeric_limits<double>::infinity()), "-inf");
 }
 
 TEST(Params, ValidateRefusesAThresholdThatWouldMakeSemiImplicitEulerBounceAtRest) {

@@ -3,10 +3,12 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -87,16 +89,41 @@ TEST(SimulateCli, ATiltBeyondTheLimitIsClampedLikeAnyTilt) {
   EXPECT_EQ(within.output.find("clamped"), std::string::npos) << within.output;
 }
 
+/// The board's roll in each row of the trajectory of `simulate ARGS --quiet --out FILE`, from
+/// t = 0 on.
+std::vector<double> rolls(const std::string& args) {
+  const std::string out = tempPath("rolls.csv");
+  std::remove(out.c_str());
+  EXPECT_EQ(runSimulate(args + " --quiet --out " + out).status, 0) << args;
+  std::istringstream rows(readFile(out));
+  std::vector<double> found;
+  std::string line;
+  std::getline(rows, line);  // the header
+  while (std::getline(rows, line)) {
+    std::istringstream row(line);
+    std::string field;
+    for (int i = 0; i < 11; ++i) std::getline(row, field, ',');  // roll is the 11th column
+    found.push_back(std::stod(field));
+  }
+  return found;
+}
+
 /// The board's roll in the trajectory's first row (at t = 0) of `simulate ARGS --out FILE`.
 double firstRoll(const std::string& args) {
-  const std::string out = tempPath("first_roll.csv");
-  std::remove(out.c_str());
-  EXPECT_EQ(runSimulate(args + " --duration 0.01 --quiet --out " + out).status, 0) << args;
-  const std::string rows = readFile(out);
-  std::istringstream row(rows.substr(rows.find('\n') + 1));
-  std::string field;
-  for (int i = 0; i < 11; ++i) std::getline(row, field, ',');  // roll is the 11th column
-  return std::stod(field);
+  const std::vector<double> r = rolls(args + " --duration 0.01");
+  return r.empty() ? NAN : r.front();
+}
+
+TEST(SimulateCli, EachStepTakesTheTiltProgrammeAtItsStart) {
+  // The programme is level until 10 ms, then rolls: the step from 10 to 11 ms takes its value at
+  // 10 ms (level), as the node takes a command stamped at a step's start; the next one moves.
+  // (Taken at each step's end, the board led it by a step: rolling by 11 ms.)
+  const std::string programme = tempPath("ramp.csv");
+  std::ofstream(programme) << "0,0,0\n0.01,0,0\n0.02,0.1,0\n";
+  const std::vector<double> r = rolls("--tilt-csv " + programme + " --duration 0.012");
+  ASSERT_EQ(r.size(), 13u);  // t = 0, 1, ..., 12 ms
+  EXPECT_EQ(r[11], 0.0);
+  EXPECT_GT(r[12], 0.0);
 }
 
 TEST(SimulateCli, AnInitialTiltInTheMazeFileOrASetOneOutranksTheProgramsFirstTilt) {
@@ -119,7 +146,7 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--tilt 0.1", "--tilt: expected ROLL,PITCH"},
       {"--duration abc", "--duration: expected a number"},
       {"--set restitution=2", "restitution: 2 is out of range [0, 1]"},
-      {"--set nokey=1", "unknown parameter 'nokey'"},
+      {"--set nokey=1", "--set 'nokey': unknown parameter (known: preset, "},
       {"--set model", "--set: expected KEY=VALUE"},
       {"--maze /nonexistent/maze.yaml", "/nonexistent/maze.yaml"},
       {"--tilt-csv /nonexistent/tilt.csv", "cannot read file"},
@@ -258,6 +285,33 @@ TEST(SimulateCli, EveryKeyTheHelpListsTakesTheDefaultItShows) {
     EXPECT_EQ(r.status, 0) << key << "=" << value << ": " << r.output;
   }
   EXPECT_GE(keys, 20) << help.output;  // the table has more than 20 keys
+}
+
+TEST(SimulateCli, EveryRangeTheHelpShowsIsTheOneASetIsRefusedBeyond) {
+  // Each "..., in [LO, HI] (default X)" line: a value beyond either bound is refused, naming the
+  // key and that range.
+  const Result help = runSimulate("--help");
+  ASSERT_EQ(help.status, 0);
+  std::istringstream lines(help.output.substr(help.output.find("Keys for --set")));
+  std::string line;
+  int ranges = 0;
+  while (std::getline(lines, line)) {
+    const std::size_t in = line.rfind(", in [");
+    if (line.compare(0, 2, "  ") != 0 || in == std::string::npos) continue;
+    const std::string key = line.substr(2, line.find(' ', 2) - 2);
+    const std::string range = line.substr(in + 5, line.find(']', in) - in - 4);  // "[LO, HI]"
+    const double lo = std::stod(range.substr(1)), hi = std::stod(range.substr(range.find(',') + 1));
+    ++ranges;
+    for (double beyond : {lo - std::max(1.0, std::abs(lo)), hi + std::max(1.0, std::abs(hi))}) {
+      std::ostringstream set;
+      set << key << "=" << beyond;
+      const Result r = runSimulate("--duration 0.001 --quiet --set " + set.str());
+      EXPECT_EQ(r.status, 2) << set.str() << ": " << r.output;
+      EXPECT_NE(r.output.find("--set " + key + ": "), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find(range), std::string::npos) << set.str() << ": " << r.output;
+    }
+  }
+  EXPECT_GE(ranges, 15) << help.output;
 }
 
 }  // namespace

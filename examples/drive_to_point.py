@@ -27,7 +27,11 @@ def main():
         command.header.stamp = rospy.Time.now()
         command.pitch = tilt_for(KP * (x - s.position_in_board.x) - KD * s.velocity.x)
         command.roll = -tilt_for(KP * (y - s.position_in_board.y) - KD * s.velocity.y)
-        tilt.publish(command)
+        try:
+            tilt.publish(command)
+        except rospy.ROSException:  # the publisher closes as the node shuts down (Ctrl-C)
+            if not rospy.is_shutdown():
+                raise
 
     rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1)
     rospy.spin()

@@ -50,15 +50,19 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
                     "%.3g s ahead of ROS time (steps taken while paused): waiting for it to "
                     "catch up",
                     now_.ahead);
+  else if (now_.lockstep)
+    status.summary(Level::OK, "running in lockstep: each tilt command advances one period");
   else
     status.summary(Level::OK, "running");
   status.add("real-time factor", factor);
-  status.add(now_.follows_ros_time ? "real-time factor aimed at (ROS time's own)"
-                                   : "real-time factor aimed at (0: as fast as it can)",
+  status.add(now_.lockstep           ? "real-time factor aimed at (lockstep: none, the commands')"
+             : now_.follows_ros_time ? "real-time factor aimed at (ROS time's own)"
+                                     : "real-time factor aimed at (0: as fast as it can)",
              aimed);
   status.add("steps skipped to catch up (last period)", skipped);
   status.add("tilt commands per second", command_rate);
-  status.add("seconds since the last tilt command", now_.since_command);
+  // (Of ROS time: in lockstep, and on a node's own clock, it stands while no command comes.)
+  status.add("seconds of ROS time since the last tilt command", now_.since_command);
   status.add("tilt commands lost on the way (last period)", now_.lost - before_.lost);
   status.add("commands queued", now_.queued);
   status.add("simulated time (s)", now_.simulated_time);

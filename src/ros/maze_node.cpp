@@ -117,6 +117,11 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
                 "marble_maze: waiting for /clock (/use_sim_time is true and no clock has come)");
         },
         true);
+  } else {
+    // The clock moves only with the commands; between them it goes on being said, as a paused
+    // own clock is, so that a node started meanwhile knows the time.
+    clock_said_ = nh.createWallTimer(ros::WallDuration(0.05),
+                                     [this](const ros::WallTimerEvent&) { publishClock(); });
   }
 }
 

@@ -106,6 +106,7 @@ class MazeNode {
   ros::Timer timer_;
   ros::WallTimer free_run_;
   ros::WallTime last_clock_said_;  // with ~clock, paused: when /clock was last said
+  ros::WallTimer clock_said_;      // in lockstep: /clock said again, 20 times a wall second
   ros::WallTimer clock_check_;     // says once if a simulated clock has not come 2 s after start
 
   ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)

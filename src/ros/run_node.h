@@ -34,8 +34,8 @@ int runNode(int argc, char** argv, const char* name) {
     }
     if (on_server)
       ROS_FATAL(
-          "%s\n(this value stays on the parameter server after the node ends: `rosparam "
-          "delete %s` clears it)",
+          "%s\n(the parameter server keeps this value after the node ends: mend it where it "
+          "was given, a launch file or `_KEY:=`, or clear it with `rosparam delete %s`)",
           what.c_str(), name.c_str());
     else
       ROS_FATAL("%s", what.c_str());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "marble_maze/params.h"
 #include "node_settings.h"
 #include "wall_throttle.h"
 
@@ -43,8 +44,8 @@ void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& ev
   checkNoneLost(tilt_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll) || !std::isfinite(msg->pitch)) {
     MARBLE_MAZE_WARN_WALL_THROTTLE(
-        1.0, "%s: refused roll=%g pitch=%g (not finite); the board keeps its tilt",
-        tilt_topic_.c_str(), msg->roll, msg->pitch);
+        1.0, "%s: refused roll=%s pitch=%s (not finite); the board keeps its tilt",
+        tilt_topic_.c_str(), mm::exactText(msg->roll).c_str(), mm::exactText(msg->pitch).c_str());
     refused_();
     return;
   }
@@ -61,8 +62,9 @@ void TiltInput::onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltR
   checkNoneLost(rate_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll_rate) || !std::isfinite(msg->pitch_rate)) {
     MARBLE_MAZE_WARN_WALL_THROTTLE(
-        1.0, "%s: refused roll_rate=%g pitch_rate=%g (not finite); nothing changed",
-        rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate);
+        1.0, "%s: refused roll_rate=%s pitch_rate=%s (not finite); nothing changed",
+        rate_topic_.c_str(), mm::exactText(msg->roll_rate).c_str(),
+        mm::exactText(msg->pitch_rate).c_str());
     refused_();
     return;
   }

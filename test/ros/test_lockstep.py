@@ -3,7 +3,8 @@
 answered by a marble_state exactly one control period (20 steps) later in simulated time, with
 the command in force; a burst of 300 commands is taken whole; a reset between commands is shown
 at once, at the stamp of the state before it; a refused (NaN) command is answered by the state as
-it stands, at the same stamp; paused, a command waits for the next step taken; and the example agent
+it stands, at the same stamp; paused, a command waits for the next step taken; between commands /clock is said again at the
+time it stands at; and the example agent
 (examples/lockstep_agent.py) brings the marble within 5 mm of its point, printing the steps per
 second of wall time it reaches."""
 import importlib.util
@@ -17,6 +18,7 @@ import rostest
 
 from marble_maze.msg import BoardTilt, MarbleState
 from marble_maze.srv import Step
+from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
 PERIOD_NS = 20 * 10**6
@@ -129,6 +131,30 @@ class LockstepTest(unittest.TestCase):
             self.assertGreater(after.roll, base.roll)
         finally:
             self.assertTrue(rospy.ServiceProxy("resume", Trigger)().success)
+
+    def test_between_commands_the_clock_is_said_again(self):
+        # A node started while no command comes learns the time: /clock is said again, at the
+        # stamp of the last state (the time stands between commands).
+        states, arrived, tilt = self.connect()
+        with arrived:
+            before = len(states)
+            tilt.publish(BoardTilt(roll=0.01, pitch=0.0))
+            self.assertTrue(arrived.wait_for(lambda: len(states) > before, timeout=5))
+            last = states[-1].header.stamp
+        time.sleep(0.3)  # no command meanwhile
+        ticks, said = [], threading.Event()
+
+        def on_clock(msg):
+            ticks.append(msg.clock)
+            if len(ticks) >= 3:
+                said.set()
+
+        clock = rospy.Subscriber("/clock", Clock, on_clock)
+        try:
+            self.assertTrue(said.wait(5), "/clock not said again within 5 s without a command")
+        finally:
+            clock.unregister()
+        self.assertEqual(set(t.to_nsec() for t in ticks[:3]), {last.to_nsec()})
 
     def test_the_example_agent_reaches_its_point(self):
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",

@@ -13,7 +13,10 @@ filter=${1:-'^BM_FreeFlight$|^BM_OpenFloor$|^BM_StepByMazeSize/cells:100$'}
 bench=$WS/devel/lib/marble_maze/marble_maze_bench
 core=$WS/devel/lib/libmarble_maze_core.so
 command -v valgrind >/dev/null || { echo "valgrind is missing: make deps installs it" >&2; exit 1; }
-[ -x "$bench" ] && [ -f "$core" ] || { echo "$bench is missing: make build builds it" >&2; exit 1; }
+if [ ! -x "$bench" ] || [ ! -f "$core" ]; then
+  echo "$bench is missing: make build builds it" >&2
+  exit 1
+fi
 steps=${STEPS:-10000}
 cases=$(MARBLE_MAZE_BENCH_STEPS=1 "$bench" --benchmark_list_tests=true |
   sed 's|/iterations:[0-9]*$||' | grep -E "$filter" || true)

@@ -7,8 +7,25 @@ import math
 import threading
 import time
 
+import rosgraph
 import rospy
 from marble_maze.msg import BoardTilt, MarbleState
+
+
+def wait_for_the_simulation(tilt, timeout=20.0):
+    """Waits until the node that takes `tilt` and publishes marble_state has connected to the
+    publisher: a command sent before would reach only the subscribers already there (a recorder
+    started first), and no answer would come."""
+    master = rosgraph.Master(rospy.get_name())
+    state_topic = rospy.resolve_name("marble_state")
+    deadline = time.time() + timeout
+    while not rospy.is_shutdown() and time.time() < deadline:
+        publishers, subscribers, _ = master.getSystemState()
+        simulation = ({n for t, nodes in publishers if t == state_topic for n in nodes} &
+                      {n for t, nodes in subscribers if t == tilt.resolved_name for n in nodes})
+        if simulation and simulation <= {c.endpoint_id for c in tilt.impl.connections}:
+            return
+        time.sleep(0.05)
 
 
 def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
@@ -22,8 +39,7 @@ def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
 
     rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1)
     tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1)
-    while tilt.get_num_connections() == 0 and not rospy.is_shutdown():
-        time.sleep(0.05)
+    wait_for_the_simulation(tilt)
     with lock:  # (the state the node showed when it started, if it came)
         seen = state[0].header.stamp if state[0] is not None else rospy.Time()
     command, begin = BoardTilt(), time.time()

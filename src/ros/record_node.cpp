@@ -75,10 +75,16 @@ class Recorder {
       }
       resolved.push_back(full);
     }
+    // Written as PATH.active and named PATH when it is closed, as rosbag record does: a
+    // recorder killed outright leaves a file that says it did not end, not one that looks whole
+    // and cannot be read. Its chunks are small, so that such a file loses little: what it holds
+    // until its last whole chunk, `rosbag reindex` gives back.
+    path_ = path;
     try {
-      bag_.open(path, rosbag::bagmode::Write);
+      bag_.setChunkThreshold(kChunkBytes);
+      bag_.open(path + ".active", rosbag::bagmode::Write);
     } catch (const rosbag::BagException& e) {
-      throw std::runtime_error(pnh.resolveName("bag") + ": " + path + ": " + e.what());
+      throw std::runtime_error(pnh.resolveName("bag") + ": " + path + ".active: " + e.what());
     }
     most_early_ = static_cast<std::size_t>(queue);
     for (const std::string& topic : resolved) {
@@ -97,8 +103,8 @@ class Recorder {
     // (A relative path is taken from the node's working directory: roslaunch's is ROS_HOME.)
     std::error_code error;
     const std::filesystem::path full_path = std::filesystem::absolute(path, error);
-    ROS_INFO("record: %zu topics into %s", resolved.size(),
-             error ? path.c_str() : full_path.c_str());
+    ROS_INFO("record: %zu topics into %s (%s.active until it stops)", resolved.size(),
+             error ? path.c_str() : full_path.c_str(), error ? path.c_str() : full_path.c_str());
   }
 
   ~Recorder() {
@@ -106,6 +112,12 @@ class Recorder {
     // A clock that never started: what came is kept, at the earliest time a bag holds.
     for (const Early& e : early_) writeAt(e.topic, ros::TIME_MIN, e.event);
     tellDropped();
+    bag_.close();
+    std::error_code error;
+    std::filesystem::rename(path_ + ".active", path_, error);
+    if (error)
+      ROS_ERROR("record: could not name %s.active %s: %s", path_.c_str(), path_.c_str(),
+                error.message().c_str());
   }
 
  private:
@@ -151,7 +163,10 @@ class Recorder {
     std::string topic;
     Event event;
   };
-  rosbag::Bag bag_;  // closed (its index written) when the node ends
+  // Some two seconds of a session's messages: what a recorder killed outright loses at most.
+  static constexpr std::uint32_t kChunkBytes = 64 * 1024;
+  std::string path_;  // the bag's name once it is closed
+  rosbag::Bag bag_;   // written as path_.active, closed (its index written) when the node ends
   std::vector<ros::Subscriber> subscribers_;
   std::vector<Early> early_;  // come before ROS time was valid, in their order
   std::size_t most_early_ = 0;

@@ -16,6 +16,10 @@ Recording readRecording(const std::string& path) {
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagUnindexedException& e) {
+    throw std::runtime_error(path + ": " + e.what() +
+                             " (a recording that did not end: `rosbag reindex " + path +
+                             "` writes its index from what it holds)");
   } catch (const rosbag::BagException& e) {
     throw std::runtime_error(path + ": " + e.what());
   }

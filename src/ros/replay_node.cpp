@@ -43,10 +43,12 @@ class ReplayNode {
     out_ = std::make_unique<marble_maze_ros::StateOutput>(nh, settings);
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
     out_->publishScene(replay_->session().simulation(), false);
-    ROS_INFO("replay: %s from simulated %.3f s to %.3f s, at %g times real time", bag.c_str(),
-             replay_->session().simulation().time(),
-             replay_->session().simulation().time() + (replay_->end() - replay_->stamp()).toSec(),
-             rate_);
+    // (The recording's span is of ROS time: a session paused meanwhile simulated less.)
+    ROS_INFO(
+        "replay: %s from simulated %.3f s, %.3f s of the recording's time, at %g times real "
+        "time",
+        bag.c_str(), replay_->session().simulation().time(),
+        (replay_->end() - replay_->stamp()).toSec(), rate_);
     start_wall_ = ros::WallTime::now();
     start_sim_ = replay_->session().simulation().time();
     timer_ = nh.createWallTimer(ros::WallDuration(0.001), &ReplayNode::onTimer, this);

@@ -18,7 +18,11 @@ rosbag play), each on a master of its own:
   7. the node, stopped, leaves on the parameter server only the parameters it was given;
   8. `rosbag play` of tilt commands recorded from two publishers, which it sends under one name
      with their two series of header.seq interleaved, is no loss to the node; a series with a
-     gap is, and the node says how many.
+     gap is, and the node says how many;
+  10. a recorder killed outright leaves BAG.active, not BAG; re-simulated, it is refused with the
+     way to mend it (rosbag reindex), and mended, it replays bit for bit up to where it was cut;
+  11. the example lockstep agent, started when another node already listens to `tilt` (a
+     recorder) and before the simulation, waits for the simulation before its first command.
 
 Plain unittest in the workspace given by MARBLE_MAZE_WS: python3 test/ros/test_record_replay.py;
 with --gtest_output=xml:FILE it writes JUnit XML for catkin. About 2 minutes.
@@ -178,6 +182,47 @@ class RecordReplayTest(unittest.TestCase):
                          kept[max(0, first - 2):first + 3] if first is not None else ""))
         print("events: the re-run's %d are the recorded ones, the recorder having missed the "
               "last %d" % (len(kept), missed))
+
+    def test_10_a_recorder_killed_outright_leaves_a_bag_that_says_so_and_is_mended(self):
+        bag = os.path.join(self.dir, "killed.bag")
+        master = Master()
+        try:
+            launch = master.start(["roslaunch", "marble_maze", "record.launch", "bag:=" + bag,
+                                   "autopilot:=true"])
+            time.sleep(10)
+            pid = re.search(r"Pid: (\d+)", master.run(["rosnode", "info", "/record"]).stdout)
+            self.assertIsNotNone(pid, "no /record node to kill")
+            os.kill(int(pid.group(1)), signal.SIGKILL)  # it writes no index, renames nothing
+            master.stop(launch)
+        finally:
+            master.close()
+        active = bag + ".active"
+        self.assertFalse(os.path.exists(bag), "a bag that did not end is named as if it had")
+        self.assertTrue(os.path.exists(active))
+        run = subprocess.run([SIMULATE, "--bag", active], capture_output=True, text=True,
+                             timeout=60)
+        self.assertNotEqual(run.returncode, 0)
+        self.assertIn("rosbag reindex " + active, run.stderr)
+        subprocess.run(["rosbag", "reindex", active], capture_output=True, check=True,
+                       cwd=self.dir, timeout=60)
+        run = subprocess.run([SIMULATE, "--bag", active, "--check"], capture_output=True,
+                             text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        compared = int(run.stdout.split("; ")[1].split()[0])
+        self.assertGreater(compared, 200, run.stdout)  # of some 500 in 10 s at 50 Hz
+
+    def test_11_the_lockstep_agent_waits_for_the_simulation_not_any_listener(self):
+        master = Master()
+        try:
+            master.start(["rostopic", "echo", "/tilt"])  # a listener that is not the simulation
+            time.sleep(2)
+            agent = master.start(["rosrun", "marble_maze", "lockstep_agent.py",
+                                  "_commands:=50"])
+            time.sleep(3)  # (its first command would have gone to the listener alone by now)
+            master.start(["roslaunch", "marble_maze", "sim.launch", "lockstep:=0.02"])
+            self.assertEqual(agent.wait(timeout=60), 0, "the agent gave up: its command was lost")
+        finally:
+            master.close()
 
     def test_6_another_step_keeps_the_recorded_times_and_a_bad_bag_is_refused(self):
 

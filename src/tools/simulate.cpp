@@ -117,6 +117,20 @@ std::string differs(const marble_maze::MarbleState& recorded, const Shown& now) 
 }
 
 /// simulate --bag: the recorded session again, and with --check the comparison.
+/// Lists the events but collisions on `s`, one a line, and returns how many collisions there were.
+int listFinishes(std::ostream& s, const std::vector<mm::Event>& events) {
+  int collisions = 0;
+  for (const mm::Event& e : events) {
+    if (e.kind == mm::EventKind::Collision) {
+      ++collisions;
+      continue;
+    }
+    s << "  t=" << e.time << " s: " << mm::toString(e.kind) << " at tile (" << e.tile.x() << ", "
+      << e.tile.y() << ", " << e.tile.z() << ")\n";
+  }
+  return collisions;
+}
+
 int rerun(const Options& o) {
   marble_maze_ros::Recording recording;
   std::unique_ptr<marble_maze_ros::Replayer> replay;
@@ -140,7 +154,8 @@ int rerun(const Options& o) {
   }
   if (events) *events << kEventsHeader;
   const auto& states = recording.states;
-  std::size_t next = 0, matched = 0, steps = 0;
+  std::size_t next = 0, matched = 0, paused = 0, steps = 0;
+  std::vector<mm::Event> all_events;
   while (next < states.size() && states[next].header.stamp < replay->stamp()) ++next;
   const ros::Time end = replay->end();
   for (;;) {
@@ -154,13 +169,18 @@ int rerun(const Options& o) {
     }
     const ros::Time stamp = replay->stamp();
     for (; next < states.size() && states[next].header.stamp <= stamp; ++next) {
-      if (states[next].header.stamp < stamp) continue;  // published while paused: not a step's
+      if (states[next].header.stamp < stamp) {  // published while paused: not a step's
+        ++paused;
+        continue;
+      }
       ++matched;
       const std::string gap_before = differs(states[next], before);
       const std::string gap = differs(states[next], shown(sim));
       if (o.check && !gap_before.empty() && !gap.empty()) {
-        std::cerr << "simulate: --check: the state stamped " << std::setprecision(17)
-                  << stamp.toSec() << " s (simulated time " << sim.time() << " s, step "
+        // (The stamp as rostopic echo shows it, seconds and nanoseconds.)
+        std::cerr << "simulate: --check: the state stamped " << stamp.sec << "."
+                  << std::setfill('0') << std::setw(9) << stamp.nsec << std::setfill(' ')
+                  << " s (simulated time " << mm::exactText(sim.time()) << " s, step "
                   << sim.steps() << "): " << gap << "\n";
         return 1;
       }
@@ -168,6 +188,8 @@ int rerun(const Options& o) {
     if (stamp >= end) break;
     replay->step();
     writeEvents(events, replay->session().events());
+    all_events.insert(all_events.end(), replay->session().events().begin(),
+                      replay->session().events().end());
     ++steps;
     if (out && (steps % o.every == 0)) writeRow(*out, sim);
   }
@@ -179,9 +201,14 @@ int rerun(const Options& o) {
   }
   if (!o.quiet) {
     std::ostream& s = summaryStream(o);
+    const int collisions = listFinishes(s, all_events);
     s << "re-simulated " << steps << " steps of " << o.bag << " from its first snapshot (step "
-      << recording.snapshot.step << ")";
-    if (o.check) s << "; " << matched << " recorded states compared: all identical";
+      << recording.snapshot.step << "): " << collisions << " collisions";
+    if (o.check) {
+      s << "; " << matched << " recorded states compared: all identical";
+      if (paused > 0)
+        s << " (" << paused << " more were published while paused, at stamps of no step)";
+    }
     s << "\n";
   }
   return 0;
@@ -232,15 +259,7 @@ int run(const Options& o) {
       << mm::getParam(scene.params, "model") << ", integrator "
       << mm::getParam(scene.params, "integrator") << ", step " << scene.params.step << " s x "
       << scene.params.substeps << "\n";
-    int collisions = 0;
-    for (const mm::Event& e : all_events) {
-      if (e.kind == mm::EventKind::Collision) {
-        ++collisions;
-        continue;
-      }
-      s << "  t=" << e.time << " s: " << mm::toString(e.kind) << " at tile (" << e.tile.x() << ", "
-        << e.tile.y() << ", " << e.tile.z() << ")\n";
-    }
+    const int collisions = listFinishes(s, all_events);
     s << "ran " << steps << " steps (" << sim->time() << " s): " << collisions
       << " collisions; marble " << phaseName(m.phase) << " at board (" << b.x() << ", " << b.y()
       << ", " << b.z() << ") m, speed " << m.velocity.norm() << " m/s\n";

@@ -147,7 +147,7 @@ class RecordReplayTest(unittest.TestCase):
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
-        compared = int(run.stdout.split("; ")[1].split()[0])
+        compared = int(re.search(r"(\d+) recorded states compared", run.stdout).group(1))
         self.assertGreater(compared, 400)
         # Its events, from the snapshot it starts at (the first that holds every recorded input)
         # to the last state or input recorded, are the recorded ones, each number exact.
@@ -208,7 +208,7 @@ class RecordReplayTest(unittest.TestCase):
         run = subprocess.run([SIMULATE, "--bag", active, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
-        compared = int(run.stdout.split("; ")[1].split()[0])
+        compared = int(re.search(r"(\d+) recorded states compared", run.stdout).group(1))
         self.assertGreater(compared, 200, run.stdout)  # of some 500 in 10 s at 50 Hz
 
     def test_11_the_lockstep_agent_waits_for_the_simulation_not_any_listener(self):

@@ -15,7 +15,7 @@ from marble_maze.msg import BoardTilt, MarbleState
 def wait_for_the_simulation(tilt, timeout=20.0):
     """Waits until the node that takes `tilt` and publishes marble_state has connected to the
     publisher: a command sent before would reach only the subscribers already there (a recorder
-    started first), and no answer would come."""
+    started first), and no answer would come. False if the node is shut down meanwhile."""
     master = rosgraph.Master(rospy.get_name())
     state_topic = rospy.resolve_name("marble_state")
     deadline = time.time() + timeout
@@ -24,12 +24,17 @@ def wait_for_the_simulation(tilt, timeout=20.0):
         simulation = ({n for t, nodes in publishers if t == state_topic for n in nodes} &
                       {n for t, nodes in subscribers if t == tilt.resolved_name for n in nodes})
         if simulation and simulation <= {c.endpoint_id for c in tilt.impl.connections}:
-            return
+            return True
         time.sleep(0.05)
+    if rospy.is_shutdown():
+        return False
+    raise RuntimeError("no node publishing %s and subscribed to %s connected within %g s: is the "
+                       "simulation running?" % (state_topic, tilt.resolved_name, timeout))
 
 
 def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
-    """Plays `commands` periods; returns the last state and the periods per second of wall time."""
+    """Plays `commands` periods; returns the last state and the periods per second of wall time
+    (None and 0 when the node was shut down before the simulation came)."""
     state, lock = [None], threading.Condition()
 
     def on_state(msg):
@@ -39,7 +44,8 @@ def run(x=0.05, y=0.03, commands=500, gain=(4.0, 3.0)):
 
     rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1)
     tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1)
-    wait_for_the_simulation(tilt)
+    if not wait_for_the_simulation(tilt):
+        return None, 0.0
     with lock:  # (the state the node showed when it started, if it came)
         seen = state[0].header.stamp if state[0] is not None else rospy.Time()
     command, begin = BoardTilt(), time.time()
@@ -67,6 +73,7 @@ if __name__ == "__main__":
     rospy.init_node("lockstep_agent")
     last, rate = run(rospy.get_param("~x", 0.05), rospy.get_param("~y", 0.03),
                      rospy.get_param("~commands", 500))
-    print("marble at (%.3f, %.3f) m after %d periods: %.0f periods a second of wall time"
-          % (last.position_in_board.x, last.position_in_board.y, rospy.get_param("~commands", 500),
-             rate))
+    if last is not None:  # (None: shut down before the simulation came)
+        print("marble at (%.3f, %.3f) m after %d periods: %.0f periods a second of wall time"
+              % (last.position_in_board.x, last.position_in_board.y,
+                 rospy.get_param("~commands", 500), rate))

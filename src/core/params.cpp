@@ -85,6 +85,9 @@ std::string listOf(const std::vector<std::pair<std::string, T>>& names) {
   return text;
 }
 
+constexpr double kMostBounceThreshold = 100;  // m/s
+constexpr double kMostSubsteps = 1000;
+
 struct Entry {
   ParamInfo info;
   std::function<void(Params&, const std::string&)> set;
@@ -102,11 +105,11 @@ Entry number(const char* key, const char* unit, const char* help, double Params:
 }
 
 /// A key given as free text (a vector's "X,Y,Z", a number or "auto"), set and read back by the
-/// functions given.
+/// functions given; the range [min, max] of a number it may be (none when they are equal).
 Entry textKey(const char* key, const char* unit, const char* help,
               std::function<void(Params&, const std::string&)> set,
-              std::function<std::string(const Params&)> get) {
-  return {{key, unit, help, ParamInfo::Type::Text, 0, 0, {}, false},
+              std::function<std::string(const Params&)> get, double min = 0, double max = 0) {
+  return {{key, unit, help, ParamInfo::Type::Text, min, max, {}, false},
           std::move(set),
           std::move(get),
           {}};
@@ -208,11 +211,12 @@ const std::vector<Entry>& entries() {
           [](Params& p, const std::string& text) {
             p.bounce_threshold_auto = text == "auto";
             if (!p.bounce_threshold_auto)
-              p.bounce_threshold = parseNumber("bounce_threshold", text, 0.0, 100.0);
+              p.bounce_threshold = parseNumber("bounce_threshold", text, 0.0, kMostBounceThreshold);
           },
           [](const Params& p) {
             return p.bounce_threshold_auto ? std::string("auto") : format(p.bounce_threshold);
-          }),
+          },
+          0.0, kMostBounceThreshold),
       live(number("friction", "", "Coulomb friction coefficient (rolling model)", &Params::friction,
                   0.0, 10.0)),
       live(number("rolling_resistance", "", "rolling resistance coefficient, 0 = off",
@@ -221,9 +225,9 @@ const std::vector<Entry>& entries() {
                   &Params::drag_coefficient, 0.0, 10.0)),
       number("air_density", "kg/m^3", "air density for the drag", &Params::air_density, 0.0, 100.0),
       live(number("step", "s", "fixed time step", &Params::step, 1e-6, 0.1)),
-      {{"substeps", "", "substeps per step", ParamInfo::Type::Whole, 1, 1000, {}, true},
+      {{"substeps", "", "substeps per step", ParamInfo::Type::Whole, 1, kMostSubsteps, {}, true},
        [](Params& p, const std::string& text) {
-         const double n = parseNumber("substeps", text, 1, 1000);
+         const double n = parseNumber("substeps", text, 1, kMostSubsteps);
          if (n != std::floor(n))
            throw ParamError("substeps: expected a whole number, got " + inQuotes(text));
          p.substeps = static_cast<int>(n);

@@ -61,7 +61,8 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
              aimed);
   status.add("steps skipped to catch up (last period)", skipped);
   status.add("tilt commands per second", command_rate);
-  // (Of ROS time: in lockstep, and on a node's own clock, it stands while no command comes.)
+  // (Of ROS time: in lockstep it stands while no command comes, and on the node's own clock
+  // while it is paused.)
   status.add("seconds of ROS time since the last tilt command", now_.since_command);
   status.add("tilt commands lost on the way (last period)", now_.lost - before_.lost);
   status.add("commands queued", now_.queued);

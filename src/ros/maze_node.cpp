@@ -117,11 +117,14 @@ MazeNode::MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : pnh_(pnh) {
                 "marble_maze: waiting for /clock (/use_sim_time is true and no clock has come)");
         },
         true);
-  } else {
-    // The clock moves only with the commands; between them it goes on being said, as a paused
-    // own clock is, so that a node started meanwhile knows the time.
-    clock_said_ = nh.createWallTimer(ros::WallDuration(0.05),
-                                     [this](const ros::WallTimerEvent&) { publishClock(); });
+  }
+  if (settings_.own_clock || settings_.lockstep > 0) {
+    // A clock that stands (paused, or in lockstep between commands) goes on being said, 20
+    // times a wall second, so that a node started meanwhile knows the time. (Not at zero: ROS
+    // takes that for no clock, and a recorder would hold each message until the clock starts.)
+    clock_said_ = nh.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) {
+      if ((settings_.lockstep > 0 || session_->paused()) && !stampNow().isZero()) publishClock();
+    });
   }
 }
 
@@ -249,16 +252,10 @@ void MazeNode::onTimer(const ros::TimerEvent&) {
   if (due > 0) runSteps(static_cast<std::uint64_t>(due));
 }
 
-void MazeNode::onFreeRun(const ros::WallTimerEvent& event) {
-  if (session_->paused()) {
-    // ROS time is the simulation's and stands still with it (as a paused Gazebo's does); /clock
-    // goes on being said, 20 times a wall second, so that a node started meanwhile knows the time.
-    if ((event.current_real - last_clock_said_).toSec() >= 0.05) {
-      last_clock_said_ = event.current_real;
-      publishClock();
-    }
-    return;
-  }
+void MazeNode::onFreeRun(const ros::WallTimerEvent& /*event*/) {
+  // ROS time is the simulation's and stands still with it (as a paused Gazebo's does; clock_said_
+  // goes on saying it).
+  if (session_->paused()) return;
   const ros::WallTime begin = ros::WallTime::now();
   if (settings_.real_time_factor > 0) {
     // As far as the factor allows by now, in slices so that callbacks are answered.

@@ -105,9 +105,8 @@ class MazeNode {
   ros::Publisher clock_pub_;
   ros::Timer timer_;
   ros::WallTimer free_run_;
-  ros::WallTime last_clock_said_;  // with ~clock, paused: when /clock was last said
-  ros::WallTimer clock_said_;      // in lockstep: /clock said again, 20 times a wall second
-  ros::WallTimer clock_check_;     // says once if a simulated clock has not come 2 s after start
+  ros::WallTimer clock_said_;   // with ~clock or ~lockstep: /clock said while it stands
+  ros::WallTimer clock_check_;  // says once if a simulated clock has not come 2 s after start
 
   ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)
   ros::Time last_frozen_;  // while paused: when the frozen state was last published

@@ -75,17 +75,6 @@ class Recorder {
       }
       resolved.push_back(full);
     }
-    // Written as PATH.active and named PATH when it is closed, as rosbag record does: a
-    // recorder killed outright leaves a file that says it did not end, not one that looks whole
-    // and cannot be read. Its chunks are small, so that such a file loses little: what it holds
-    // until its last whole chunk, `rosbag reindex` gives back.
-    path_ = path;
-    try {
-      bag_.setChunkThreshold(kChunkBytes);
-      bag_.open(path + ".active", rosbag::bagmode::Write);
-    } catch (const rosbag::BagException& e) {
-      throw std::runtime_error(pnh.resolveName("bag") + ": " + path + ".active: " + e.what());
-    }
     most_early_ = static_cast<std::size_t>(queue);
     for (const std::string& topic : resolved) {
       // Any type: the first publisher's connection says which (as rosbag record subscribes).
@@ -100,6 +89,9 @@ class Recorder {
       options.transport_hints = ros::TransportHints().tcpNoDelay();
       subscribers_.push_back(nh.subscribe(options));
     }
+    // (Opened last: nothing is written before the loop runs the callbacks, and a constructor
+    // that threw after it would leave a closed, indexed PATH.active behind.)
+    open(pnh.resolveName("bag"), path);
     // (A relative path is taken from the node's working directory: roslaunch's is ROS_HOME.)
     std::error_code error;
     const std::filesystem::path full_path = std::filesystem::absolute(path, error);
@@ -122,6 +114,32 @@ class Recorder {
 
  private:
   using Event = ros::MessageEvent<topic_tools::ShapeShifter const>;
+
+  /// Opens PATH.active, which is named PATH when it is closed, as rosbag record does: a recorder
+  /// killed outright leaves a file that says it did not end, not one that looks whole and cannot
+  /// be read. Its chunks are small, so that such a file loses little: `rosbag reindex` gives back
+  /// all it holds up to its last whole chunk. A PATH.active already there is such a recording,
+  /// and is left alone; a PATH already there is replaced now, as an open for writing replaces a
+  /// file, rather than when this one closes (after a kill it would pass for this recording).
+  void open(const std::string& name, const std::string& path) {
+    const std::string active = path + ".active";
+    std::error_code error;
+    if (std::filesystem::exists(active, error))
+      throw std::runtime_error(name + ": " + active +
+                               " is there: a recording that did not end (`rosbag reindex` it, "
+                               "or remove it)");
+    if (std::filesystem::exists(path, error)) {
+      ROS_INFO("record: replaces %s", path.c_str());
+      std::filesystem::remove(path, error);
+    }
+    path_ = path;
+    try {
+      bag_.setChunkThreshold(kChunkBytes);
+      bag_.open(active, rosbag::bagmode::Write);
+    } catch (const rosbag::BagException& e) {
+      throw std::runtime_error(name + ": " + active + ": " + e.what());
+    }
+  }
 
   void write(const std::string& topic, const Event& event) {
     // The time it came in ROS time, as rosbag record stamps it: a simulated clock's in sim time.

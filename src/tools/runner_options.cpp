@@ -49,7 +49,8 @@ Runs the marble_maze physics without ROS and reports what happened.
   --maze NAME|FILE     a built-in maze (classic, prototype) or a maze file; default classic
   --tilt ROLL,PITCH    constant board tilt in radians (REP 103: roll about x, pitch about y);
                        default 0,0
-  --tilt-csv FILE      tilt program: CSV rows t,roll,pitch (s, rad, rad), linear in between
+  --tilt-csv FILE      tilt program: CSV rows t,roll,pitch (s, rad, rad), linear in between;
+                       each step takes its value at the step's start
   --set KEY=VALUE      override a scene or physics value (repeatable); keys below
   --duration SECONDS   simulated time to run; default 5
   --out FILE           write the trajectory as CSV ('-' for standard output)
@@ -80,7 +81,7 @@ Keys for --set (and for a maze file's physics section):
     char line[64];
     std::snprintf(line, sizeof line, "  %-26s ", name.c_str());
     // (The range is the table's, the one setParam refuses a value beyond.)
-    const bool ranged = info.type == ParamInfo::Type::Number || info.type == ParamInfo::Type::Whole;
+    const bool ranged = info.max > info.min;
     out << line << info.help
         << (ranged ? ", in [" + exactText(info.min) + ", " + exactText(info.max) + "]" : "")
         << " (default " << getParam(Params(), info.key) << ")\n";

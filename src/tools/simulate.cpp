@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -116,7 +115,6 @@ std::string differs(const marble_maze::MarbleState& recorded, const Shown& now) 
   return "";
 }
 
-/// simulate --bag: the recorded session again, and with --check the comparison.
 /// Lists the events but collisions on `s`, one a line, and returns how many collisions there were.
 int listFinishes(std::ostream& s, const std::vector<mm::Event>& events) {
   int collisions = 0;
@@ -131,6 +129,7 @@ int listFinishes(std::ostream& s, const std::vector<mm::Event>& events) {
   return collisions;
 }
 
+/// simulate --bag: the recorded session again, and with --check the comparison.
 int rerun(const Options& o) {
   marble_maze_ros::Recording recording;
   std::unique_ptr<marble_maze_ros::Replayer> replay;
@@ -177,11 +176,10 @@ int rerun(const Options& o) {
       const std::string gap_before = differs(states[next], before);
       const std::string gap = differs(states[next], shown(sim));
       if (o.check && !gap_before.empty() && !gap.empty()) {
-        // (The stamp as rostopic echo shows it, seconds and nanoseconds.)
-        std::cerr << "simulate: --check: the state stamped " << stamp.sec << "."
-                  << std::setfill('0') << std::setw(9) << stamp.nsec << std::setfill(' ')
-                  << " s (simulated time " << mm::exactText(sim.time()) << " s, step "
-                  << sim.steps() << "): " << gap << "\n";
+        // (The stamp as ros::Time prints it, exact to the nanosecond.)
+        std::cerr << "simulate: --check: the state stamped " << stamp << " s (simulated time "
+                  << mm::exactText(sim.time()) << " s, step " << sim.steps() << "): " << gap
+                  << "\n";
         return 1;
       }
     }

@@ -3,10 +3,10 @@
 answered by a marble_state exactly one control period (20 steps) later in simulated time, with
 the command in force; a burst of 300 commands is taken whole; a reset between commands is shown
 at once, at the stamp of the state before it; a refused (NaN) command is answered by the state as
-it stands, at the same stamp; paused, a command waits for the next step taken; between commands /clock is said again at the
-time it stands at; and the example agent
-(examples/lockstep_agent.py) brings the marble within 5 mm of its point, printing the steps per
-second of wall time it reaches."""
+it stands, at the same stamp; paused, a command waits for the next step taken; between commands
+/clock is said again at the time it stands at; and the example agent (examples/lockstep_agent.py)
+brings the marble within 5 mm of its point, printing the steps per second of wall time it
+reaches."""
 import importlib.util
 import os
 import threading

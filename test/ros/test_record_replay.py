@@ -189,7 +189,11 @@ class RecordReplayTest(unittest.TestCase):
         try:
             launch = master.start(["roslaunch", "marble_maze", "record.launch", "bag:=" + bag,
                                    "autopilot:=true"])
-            time.sleep(10)
+            # (Six chunks at least, some ten seconds: a loaded machine starts the launch late.)
+            deadline = time.time() + 90
+            while time.time() < deadline and not (
+                    os.path.exists(bag + ".active") and os.path.getsize(bag + ".active") > 6 * 65536):
+                time.sleep(0.2)
             pid = re.search(r"Pid: (\d+)", master.run(["rosnode", "info", "/record"]).stdout)
             self.assertIsNotNone(pid, "no /record node to kill")
             os.kill(int(pid.group(1)), signal.SIGKILL)  # it writes no index, renames nothing
@@ -209,7 +213,7 @@ class RecordReplayTest(unittest.TestCase):
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         compared = int(re.search(r"(\d+) recorded states compared", run.stdout).group(1))
-        self.assertGreater(compared, 200, run.stdout)  # of some 500 in 10 s at 50 Hz
+        self.assertGreater(compared, 100, run.stdout)  # (of some 400 in 8 s at 50 Hz)
 
     def test_11_the_lockstep_agent_waits_for_the_simulation_not_any_listener(self):
         master = Master()

@@ -19,8 +19,9 @@ rosbag play), each on a master of its own:
   8. `rosbag play` of tilt commands recorded from two publishers, which it sends under one name
      with their two series of header.seq interleaved, is no loss to the node; a series with a
      gap is, and the node says how many;
-  10. a recorder killed outright leaves BAG.active, not BAG; re-simulated, it is refused with the
-     way to mend it (rosbag reindex), and mended, it replays bit for bit up to where it was cut;
+  10. a recorder killed outright leaves BAG.active, not BAG; recording again under that name is
+     refused; re-simulated, it is refused with the way to mend it (rosbag reindex), and mended, it
+     replays bit for bit up to where it was cut;
   11. the example lockstep agent, started when another node already listens to `tilt` (a
      recorder) and before the simulation, waits for the simulation before its first command.
 
@@ -203,6 +204,17 @@ class RecordReplayTest(unittest.TestCase):
         active = bag + ".active"
         self.assertFalse(os.path.exists(bag), "a bag that did not end is named as if it had")
         self.assertTrue(os.path.exists(active))
+        # Recording again under that name is refused: it would write over what is left.
+        master = Master()
+        try:
+            with tempfile.TemporaryFile("w+") as log:
+                again = master.start(["roslaunch", "marble_maze", "record.launch", "bag:=" + bag,
+                                      "node:=false"], log=log)
+                again.wait(timeout=60)
+                log.seek(0)
+                self.assertIn(active + " is there: a recording that did not end", log.read())
+        finally:
+            master.close()
         run = subprocess.run([SIMULATE, "--bag", active], capture_output=True, text=True,
                              timeout=60)
         self.assertNotEqual(run.returncode, 0)

@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // At most 200 steps and 2000 substeps: the run's start is what is fuzzed, not its length.
     const double steps = std::min(200.0, o.duration / step + 0.5);
     for (int n = 1; n <= steps && run.sim->counts().substeps < 2000; ++n) {
-      const mm::TiltSchedule::Point tilt = o.tilt.at(n * step);
+      const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step);
       run.sim->setTargetTilt(tilt.roll, tilt.pitch);
       run.sim->step();
     }

@@ -3,6 +3,7 @@
 // files written, so that the fuzzer drives it as the program does.
 #pragma once
 
+#include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <stdexcept>
@@ -51,6 +52,15 @@ struct Run {
   std::unique_ptr<Simulation> sim;
 };
 Run prepare(const Options& o);
+
+/// The tilt the run sets before step n (1, 2, ...) of `step` seconds: the programme's value at
+/// the step's start, as a controller sends it then and the node takes a command at the first
+/// step that starts at or after its stamp (taken at the step's end, the board would act on a
+/// value a step before a controller could send it). Substeps refine the physics between
+/// commands, not the programme.
+inline TiltSchedule::Point tiltBeforeStep(const Options& o, std::uint64_t n, double step) {
+  return o.tilt.at(static_cast<double>(n - 1) * step);
+}
 
 }  // namespace runner
 }  // namespace marble_maze

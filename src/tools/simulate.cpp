@@ -237,11 +237,7 @@ int run(const Options& o) {
               << mm::exactText(static_cast<double>(steps) * step) << " s)\n";
   std::vector<mm::Event> all_events;
   for (std::uint64_t n = 1; n <= steps; ++n) {
-    // The programme's value at the step's start, as a controller sends it then and the node
-    // takes a command at the first step that starts at or after its stamp (taken at the step's
-    // end, the board would act on a value a step before a controller could send it). Substeps
-    // refine the physics between commands, not the programme.
-    const mm::TiltSchedule::Point tilt = o.tilt.at(static_cast<double>(n - 1) * step);
+    const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step);
     sim->setTargetTilt(tilt.roll, tilt.pitch);
     sim->step();
     all_events.insert(all_events.end(), sim->events().begin(), sim->events().end());

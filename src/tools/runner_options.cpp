@@ -72,7 +72,8 @@ The board starts at the tilt program's first value unless initial_roll or initia
 
 Trajectory columns (world frame, SI units): t,x,y,z,vx,vy,vz,wx,wy,wz,roll,pitch,contacts,phase
   phase: free, in_hole, at_goal or off_board
-Event columns: t,kind,i,j,k,speed   kind: collision, hole, goal or off_board; i,j,k the tile
+Event columns: t,kind,i,j,k,speed   kind: collision, hole, goal or off_board; i,j,k the tile;
+  speed: a collision's approach speed along the tile's normal, else the marble's speed
 
 Keys for --set (and for a maze file's physics section):
 )";

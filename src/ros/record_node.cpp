@@ -95,8 +95,9 @@ class Recorder {
     // (A relative path is taken from the node's working directory: roslaunch's is ROS_HOME.)
     std::error_code error;
     const std::filesystem::path full_path = std::filesystem::absolute(path, error);
+    const std::string shown = error ? path : full_path.string();
     ROS_INFO("record: %zu topics into %s (%s.active until it stops)", resolved.size(),
-             error ? path.c_str() : full_path.c_str(), error ? path.c_str() : full_path.c_str());
+             shown.c_str(), shown.c_str());
   }
 
   ~Recorder() {

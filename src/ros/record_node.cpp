@@ -107,9 +107,9 @@ class Recorder {
     tellDropped();
     bag_.close();
     std::error_code error;
-    std::filesystem::rename(path_ + ".active", path_, error);
+    std::filesystem::rename(activePath(), path_, error);
     if (error)
-      ROS_ERROR("record: could not name %s.active %s: %s", path_.c_str(), path_.c_str(),
+      ROS_ERROR("record: could not name %s %s: %s", activePath().c_str(), path_.c_str(),
                 error.message().c_str());
   }
 
@@ -123,7 +123,8 @@ class Recorder {
   /// and is left alone; a PATH already there is replaced now, as an open for writing replaces a
   /// file, rather than when this one closes (after a kill it would pass for this recording).
   void open(const std::string& name, const std::string& path) {
-    const std::string active = path + ".active";
+    path_ = path;
+    const std::string active = activePath();
     std::error_code error;
     if (std::filesystem::exists(active, error))
       throw std::runtime_error(name + ": " + active +
@@ -133,7 +134,6 @@ class Recorder {
       ROS_INFO("record: replaces %s", path.c_str());
       std::filesystem::remove(path, error);
     }
-    path_ = path;
     try {
       bag_.setChunkThreshold(kChunkBytes);
       bag_.open(active, rosbag::bagmode::Write);
@@ -141,6 +141,9 @@ class Recorder {
       throw std::runtime_error(name + ": " + active + ": " + e.what());
     }
   }
+
+  /// The name the bag is written under until it is closed.
+  std::string activePath() const { return path_ + ".active"; }
 
   void write(const std::string& topic, const Event& event) {
     // The time it came in ROS time, as rosbag record stamps it: a simulated clock's in sim time.

@@ -19,6 +19,8 @@ rosbag play), each on a master of its own:
   8. `rosbag play` of tilt commands recorded from two publishers, which it sends under one name
      with their two series of header.seq interleaved, is no loss to the node; a series with a
      gap is, and the node says how many;
+  9. an agent's burst of 1000 tilt commands into a lockstep node is answered state for state, and
+     record.launch keeps every input, so that the bag replays bit for bit;
   10. a recorder killed outright leaves BAG.active, not BAG; recording again under that name is
      refused; re-simulated, it is refused with the way to mend it (rosbag reindex), and mended, it
      replays bit for bit up to where it was cut;

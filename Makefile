@@ -1,6 +1,6 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
-.PHONY: all deps build test demo bench speedup instructions budgets tradeoff soak fuzz screenshot lint format clean ws
+.PHONY: all deps build test demo bench speedup instructions budgets model tradeoff soak fuzz screenshot lint format clean ws
 
 all: build
 
@@ -34,6 +34,12 @@ instructions: build
 # 30 s; make test checks them too).
 budgets: build
 	@bash scripts/check_budgets.sh
+
+# What holds a step's time, by a model of the processor run on a trace of the step (valgrind's
+# lackey): the chain of dependent values, the width and the window, cycles a step (about a minute
+# a case). CASES: free_flight, open_floor, maze:CELLS; FREE: a regex of functions taken out.
+model: build
+	@bash scripts/cycle_model.sh $${CASES:+"$$CASES"}
 
 # The speed-accuracy trade: doc/tradeoff.{csv,md,png} from scratch (under half a minute).
 tradeoff: build

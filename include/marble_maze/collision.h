@@ -68,6 +68,12 @@ struct NearTiles {
   /// Where each layer of them (a z slot of the grid) begins in `tiles`, bottom up: they are
   /// gathered in the grid's order, layer by layer.
   std::vector<std::size_t> layers;
+  /// Whether they are one layer of the grid that fills its x-y rectangle, [lower, upper] (an
+  /// open floor): a centre above it and over the rectangle touches at most its top, which the
+  /// query then finds without looking at each tile.
+  bool one_full_layer = false;
+  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();       ///< grid frame, the tiles' bounding box
+  Index3 first = Index3::Zero(), last = Index3::Zero();  ///< the tiles' lowest and highest slots
   std::uint64_t gathers = 0;  ///< how often they were gathered from the grid
 };
 

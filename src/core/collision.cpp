@@ -70,6 +70,74 @@ bool facesOpen(const Maze& maze, const Index3& t, const Box& box, const Vec3& c)
   return true;
 }
 
+/// Whether the near tiles are one full layer (NearTiles::one_full_layer), and their bounds.
+void markOneFullLayer(NearTiles* near) {
+  near->one_full_layer = false;
+  if (near->layers.size() != 1) return;
+  Index3& first = near->first;
+  Index3& last = near->last;
+  first = last = near->tiles.front().index;
+  near->lower = near->tiles.front().box.lower;
+  near->upper = near->tiles.front().box.upper;
+  for (const NearTiles::Tile& t : near->tiles) {
+    first = first.cwiseMin(t.index);
+    last = last.cwiseMax(t.index);
+    near->lower = near->lower.cwiseMin(t.box.lower);
+    near->upper = near->upper.cwiseMax(t.box.upper);
+  }
+  // (Distinct tiles as many as the slots of their bounding rectangle fill it, row by row in the
+  // grid's order.)
+  const std::size_t slots = static_cast<std::size_t>(last.x() - first.x() + 1) *
+                            static_cast<std::size_t>(last.y() - first.y() + 1);
+  near->one_full_layer = near->tiles.size() == slots;
+}
+
+/// The contacts of grid point c with one full layer of near tiles, as looking at each tile gives
+/// them, bit for bit, when c lies above the layer and over its rectangle: the top face of the
+/// first tile in the grid's order under c, or none when c is out of reach of it. (Every other
+/// tile has a neighbour in the layer on the side towards c: its feature nearest c lies on a face
+/// shared with a solid tile, inside the union.) False, with nothing found, elsewhere.
+bool contactWithOneFullLayer(const Maze& maze, const NearTiles& near, const Vec3& c, double radius,
+                             double reach, std::vector<Contact>* contacts) {
+  if (!(c.x() >= near.lower.x() && c.x() <= near.upper.x() && c.y() >= near.lower.y() &&
+        c.y() <= near.upper.y() && c.z() > near.upper.z()))
+    return false;
+  const double height = c.z() - near.upper.z();
+  const double distance2 = height * height;
+  // (Below the smallest normal number the look at each tile takes another branch.)
+  if (distance2 < std::numeric_limits<double>::min()) return false;
+  if (distance2 >= reach * reach) return true;  // out of reach: no contact
+  // The tile under c, found by its slots rather than by a search whose end would move from
+  // query to query (a branch the processor guesses wrong): on a seam c lies in the tiles either
+  // side of it, and the lower one is the first in the grid's order.
+  const int columns = near.last.x() - near.first.x() + 1;
+  const auto under = [&](int i, int j) -> const NearTiles::Tile& {
+    return near
+        .tiles[static_cast<std::size_t>((j - near.first.y()) * columns + i - near.first.x())];
+  };
+  int i = std::clamp(maze.axis(0).slotAt(c.x()), near.first.x(), near.last.x());
+  int j = std::clamp(maze.axis(1).slotAt(c.y()), near.first.y(), near.last.y());
+  if (i > near.first.x() && c.x() <= under(i - 1, j).box.upper.x()) --i;
+  if (j > near.first.y() && c.y() <= under(i, j - 1).box.upper.y()) --j;
+  const NearTiles::Tile& tile = under(i, j);
+  // (The slots' formula and the tiles' bounds may round apart by a hair: then each tile is
+  // looked at.)
+  const Box& box = tile.box;
+  if (!(c.x() >= box.lower.x() && c.x() <= box.upper.x() && c.y() >= box.lower.y() &&
+        c.y() <= box.upper.y()))
+    return false;
+  // (Built here and copied in, as a look at each tile adds it: emplace_back() would zero it
+  // first with a string instruction, which costs more than the rest of this.)
+  Contact contact;
+  contact.normal = contact.grid_normal = Vec3::UnitZ();
+  contact.surface_velocity = Vec3::Zero();  // (the world's normal and this: below, as for all)
+  contact.depth = radius - height;
+  contact.grid_point = Vec3(c.x(), c.y(), box.upper.z());
+  contact.tile = tile.index;
+  contacts->push_back(contact);
+  return true;
+}
+
 /// For a centre inside a tile: the open face it is nearest to, as the outward normal and the
 /// distance to that face. False when every face is shared (a tile buried in others).
 bool nearestOpenFace(const Maze& maze, const Index3& t, const Box& box, const Vec3& c, Vec3* normal,
@@ -468,8 +536,10 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
         }
         kept.index = t;
       });
+      markOneFullLayer(near);
     }
-    for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
+    if (!(near->one_full_layer && contactWithOneFullLayer(maze, *near, c, radius, reach, contacts)))
+      for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
   }
   for (Contact& contact : *contacts) {
     contact.grid_normal = contact.normal;

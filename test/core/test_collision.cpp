@@ -217,6 +217,74 @@ TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
   EXPECT_LT(kept.gathers, 15000u);  // kept for some queries: 0 would test nothing
 }
 
+TEST(FindContacts, AFullLayerOfNearTilesGivesTheContactsOfAFreshLook) {
+  // Over a floor of many tiles the near tiles are often one full layer, and the query answers
+  // from the layer's top without looking at each tile: it must find what a fresh look finds, bit
+  // for bit, on an open floor, beside a hole in it, over its edge where the board ends (a floor
+  // with no walls round it, the marble also beyond it), resting on it, in flight, in it.
+  Maze walled = test::generatedMaze(6, false);
+  Maze holed = walled;
+  holed.setSolid({5, 5, 0}, false);
+  Maze bare(AxisSlots(0.005, 0.0221, 9), AxisSlots(0.005, 0.02325, 9), AxisSlots(0.005, 0.012, 2));
+  for (int j = 0; j < 9; ++j)
+    for (int i = 0; i < 9; ++i) bare.setSolid({i, j, 0}, true);
+  const double r = 0.006, margin = 1e-7;
+  std::mt19937 random(5);
+  const auto uniform = [&](double lo, double hi) {
+    return lo + (hi - lo) * std::generate_canonical<double, 53>(random);
+  };
+  for (const Maze* maze : {&walled, &holed, &bare}) {
+    GridFrame frame;
+    frame.rotation = Eigen::AngleAxisd(0.05, Vec3(2, -1, 0).normalized()).toRotationMatrix();
+    frame.grid_pivot = maze->pivot();
+    frame.angular_velocity = Vec3(-0.1, 0.4, 0);
+    NearTiles kept;
+    kept.slack = 0.5 * r;
+    const double top = maze->floorTop();
+    Vec3 grid(maze->axis(0).centre(5), maze->axis(1).centre(5), top + r);
+    int one_layer = 0, contacts_seen = 0;
+    for (int n = 0; n < 20000; ++n) {
+      const Vec3 move(uniform(-2e-3, 2e-3), uniform(-2e-3, 2e-3), uniform(-1e-3, 1e-3));
+      grid = (grid + move).cwiseMax(Vec3(-2 * r, -2 * r, top - 0.5 * r));
+      grid =
+          grid.cwiseMin(Vec3(maze->extent().x() + 2 * r, maze->extent().y() + 2 * r, top + 2 * r));
+      if (n % 3 == 0) grid.z() = top + r;  // resting on the floor, exactly
+      // On the seam between floor tiles nearest to it (the walk stays free to wander).
+      const auto seam = [&](int axis) {
+        const AxisSlots& slots = maze->axis(axis);
+        const int i = slots.slotAt(grid[axis]);
+        const double lower = slots.lower(i), upper = slots.upper(i);
+        grid[axis] = grid[axis] - lower < upper - grid[axis] ? lower : upper;
+      };
+      if (n % 7 == 0) seam(0);
+      if (n % 11 == 0) seam(1);
+      const Vec3 centre = frame.toWorld(grid);
+      kept.skin = uniform(0, r);
+      std::vector<Contact> with_kept, fresh;
+      findContacts(*maze, frame, centre, r, margin, &with_kept, &kept);
+      findContacts(*maze, frame, centre, r, margin, &fresh);
+      one_layer += kept.one_full_layer;
+      ASSERT_EQ(with_kept.size(), fresh.size()) << "at " << grid.transpose();
+      for (std::size_t i = 0; i < fresh.size(); ++i) {
+        EXPECT_EQ(with_kept[i].normal, fresh[i].normal);
+        EXPECT_EQ(with_kept[i].grid_normal, fresh[i].grid_normal);
+        EXPECT_EQ(with_kept[i].grid_point, fresh[i].grid_point);
+        EXPECT_EQ(with_kept[i].surface_velocity, fresh[i].surface_velocity);
+        EXPECT_EQ(with_kept[i].depth, fresh[i].depth);
+        EXPECT_EQ(with_kept[i].tile, fresh[i].tile);
+      }
+      contacts_seen += static_cast<int>(fresh.size());
+    }
+    // A fifth of the queries or more answered from the layer (near the walls, the hole and the
+    // edge the tiles are not one full layer), and half of them touching the floor.
+    EXPECT_GT(one_layer, 4000) << "maze "
+                               << (maze == &walled  ? "walled"
+                                   : maze == &holed ? "holed"
+                                                    : "bare");
+    EXPECT_GT(contacts_seen, 10000);
+  }
+}
+
 TEST(SweepSphere, AFastMarbleNeverPassesAThinWall) {
   Maze maze(AxisSlots(0.005, 0.02, 11), AxisSlots(0.005, 0.02, 5), AxisSlots::uniform(0.01, 1));
   maze.setSolid({6, 2, 0}, true);  // a 5 mm thin slot, x from 0.075 to 0.08

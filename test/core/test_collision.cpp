@@ -171,6 +171,21 @@ TEST(SphereBoxImpact, FaceEdgeAndCornerTimesMatchHandWorkedValues) {
   EXPECT_FALSE(sphereBoxImpact({-0.02, -0.004, -0.004}, {0.04, 0, 0}, 0.005, box, &t, &q));
 }
 
+/// Whether two queries found the same contacts, bit for bit, in the same order.
+::testing::AssertionResult sameContacts(const std::vector<Contact>& a,
+                                        const std::vector<Contact>& b) {
+  if (a.size() != b.size())
+    return ::testing::AssertionFailure() << a.size() << " contacts against " << b.size();
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].normal != b[i].normal || a[i].grid_normal != b[i].grid_normal ||
+        a[i].grid_point != b[i].grid_point || a[i].surface_velocity != b[i].surface_velocity ||
+        a[i].depth != b[i].depth || a[i].tile != b[i].tile)
+      return ::testing::AssertionFailure()
+             << "contact " << i << " differs: tile " << a[i].tile.transpose() << " against "
+             << b[i].tile.transpose() << ", depth " << a[i].depth << " against " << b[i].depth;
+  return ::testing::AssertionSuccess();
+}
+
 TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
   // A marble wandering over a generated maze in steps of up to 2 mm, near the floor and the
   // walls and sometimes into them, on a tilted board: the contacts found with the near tiles kept
@@ -200,14 +215,7 @@ TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
     std::vector<Contact> with_kept, fresh;
     findContacts(maze, frame, centre, r, margin, &with_kept, &kept);
     findContacts(maze, frame, centre, r, margin, &fresh);
-    ASSERT_EQ(with_kept.size(), fresh.size()) << "at " << grid.transpose();
-    for (std::size_t i = 0; i < fresh.size(); ++i) {
-      EXPECT_EQ(with_kept[i].normal, fresh[i].normal);
-      EXPECT_EQ(with_kept[i].grid_point, fresh[i].grid_point);
-      EXPECT_EQ(with_kept[i].surface_velocity, fresh[i].surface_velocity);
-      EXPECT_EQ(with_kept[i].depth, fresh[i].depth);
-      EXPECT_EQ(with_kept[i].tile, fresh[i].tile);
-    }
+    ASSERT_TRUE(sameContacts(with_kept, fresh)) << "at " << grid.transpose();
     contacts_seen += static_cast<int>(fresh.size());
     // Every solid tile within the skin beyond the contacts' reach is among the kept ones.
     const Vec3 c = frame.toGrid(centre);
@@ -264,15 +272,7 @@ TEST(FindContacts, AFullLayerOfNearTilesGivesTheContactsOfAFreshLook) {
       findContacts(*maze, frame, centre, r, margin, &with_kept, &kept);
       findContacts(*maze, frame, centre, r, margin, &fresh);
       one_layer += kept.one_full_layer;
-      ASSERT_EQ(with_kept.size(), fresh.size()) << "at " << grid.transpose();
-      for (std::size_t i = 0; i < fresh.size(); ++i) {
-        EXPECT_EQ(with_kept[i].normal, fresh[i].normal);
-        EXPECT_EQ(with_kept[i].grid_normal, fresh[i].grid_normal);
-        EXPECT_EQ(with_kept[i].grid_point, fresh[i].grid_point);
-        EXPECT_EQ(with_kept[i].surface_velocity, fresh[i].surface_velocity);
-        EXPECT_EQ(with_kept[i].depth, fresh[i].depth);
-        EXPECT_EQ(with_kept[i].tile, fresh[i].tile);
-      }
+      ASSERT_TRUE(sameContacts(with_kept, fresh)) << "at " << grid.transpose();
       contacts_seen += static_cast<int>(fresh.size());
     }
     // A fifth of the queries or more answered from the layer (near the walls, the hole and the

@@ -36,7 +36,7 @@ budgets: build
 	@bash scripts/check_budgets.sh
 
 # What holds a step's time, by a model of the processor run on a trace of the step (valgrind's
-# lackey): the chain of dependent values, the width and the window, cycles a step (about a minute
+# lackey): the chain of dependent values, the width and the window, cycles a step (about 2 minutes
 # a case). CASES: free_flight, open_floor, maze:CELLS; FREE: a regex of functions taken out.
 model: build
 	@bash scripts/cycle_model.sh $${CASES:+"$$CASES"}

@@ -6,7 +6,7 @@
 # their cycles a step: the chain of dependent values alone, the width alone, the window alone,
 # and both. The same build gives the same figures from run to run. FREE, a regex of functions,
 # takes their work out of the model (what a stage costs); CHAIN=1 lists the functions the chain
-# runs through. A few minutes a case.
+# runs through. About 2 minutes a case.
 set -euo pipefail
 . "$(dirname "$0")/workspace.sh"
 driver=$WS/devel/lib/marble_maze/marble_maze_cycle_driver

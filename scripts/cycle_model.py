@@ -120,9 +120,9 @@ def run(ops, width=5.0, window=352, fp_ports=2, load_latency=5, mixed_store_pena
             for b in range(address, address + size):
                 byte_store[b] = (i, done)
         retired = max(retired + cost, done)
-        if not op.free:
+        if window and not op.free:
             in_flight.append(retired)
-            if window and len(in_flight) > window:
+            if len(in_flight) > window:
                 in_flight.popleft()
     return retired, waited_on, ready_at
 

@@ -81,6 +81,9 @@ class ContactSolver {
     /// but worked out from the inverses as the sweeps always took it (which rounds otherwise).
     double tangent_mass;
     double gamma;  ///< k - 1 / (m^2 k): how a pair's slipping friction turns its slip
+    /// 1 / g, 1 / k, 1 / (m k) and 1 / (k^2 - 1/m^2), for the pair's solve: a product by a
+    /// reciprocal where a quotient would wait some 14 cycles on its path to the answer.
+    double inv_g, inv_k, inv_mk, inv_stick_det;
   };
 
   Params params_;

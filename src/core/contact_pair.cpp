@@ -22,8 +22,9 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
   const Vec3& nb = contacts[1].normal;
   if (std::abs(na.dot(nb)) > 1e-12) return false;
   const double m = constants_.mass, r = constants_.radius, mu = params_.friction;
-  const double g = constants_.g, k = constants_.k;
+  const double k = constants_.k;
   const double gamma = constants_.gamma;  // how a slip's friction along t turns its slip
+  const double inv_m = constants_.inv_mass, inv_g = constants_.inv_g, inv_k = constants_.inv_k;
   // The normal velocity change each contact needs (its target less its approach), per unit mass.
   double need[2];
   for (int i = 0; i < 2; ++i)
@@ -61,8 +62,8 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
     const Vec3& ns = contacts[f.s].normal;
     const Vec3& nl = contacts[f.l].normal;
     const Vec3 Fs = fs_a * nl + fs_b * f.t, Fl = fl_a * ns + fl_b * f.t;
-    body->linear += (Ns * ns + Fs + Nl * nl + Fl) / m;
-    body->angular += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) / constants_.inertia;
+    body->linear += (Ns * ns + Fs + Nl * nl + Fl) * inv_m;
+    body->angular += ((-r * ns).cross(Fs) + (-r * nl).cross(Fl)) * constants_.inv_inertia;
     (*outcomes)[f.s].normal_impulse = Ns;
     (*outcomes)[f.l].normal_impulse = Nl;
     friction_impulses_[f.s] = Fs;
@@ -71,13 +72,13 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
   };
 
   const Frame ab = frame(0, 1);
-  const double d = -ab.A_s / g;  // fs_a - fl_a when s sticks
+  const double d = -ab.A_s * inv_g;  // fs_a - fl_a when s sticks
   // Both stick: possible only when the two ask the same across (A_s + A_l = 0, as on a board
   // at rest); along, a 2 x 2 system; across, a squeeze fs_a = fl_a + d free within the cones.
   if (std::abs(ab.A_s + ab.A_l) < 1e-13) {
-    const double det = k * k - 1 / (m * m);
-    const double fs_b = (-ab.ws_t * k + ab.wl_t / m) / det;
-    const double fl_b = (-ab.wl_t * k + ab.ws_t / m) / det;
+    const double inv_det = constants_.inv_stick_det;  // of the system k fs_b + fl_b / m = ...
+    const double fs_b = (-ab.ws_t * k + ab.wl_t * inv_m) * inv_det;
+    const double fl_b = (-ab.wl_t * k + ab.ws_t * inv_m) * inv_det;
     for (const double fl_a : {-0.5 * d, 0.0, -d}) {  // the least friction first
       const double fs_a = fl_a + d;
       if (inCone(fs_a, fs_b, m * need[0] - fl_a) && inCone(fl_a, fl_b, m * need[1] - fs_a))
@@ -88,19 +89,28 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
   // frictions, along it is beta + gamma fl_b, and the slip's friction is -lambda times its slip,
   // with lambda = mu N_l / |slip| and N_l = C + lambda S.
   for (const Frame& f : {ab, frame(1, 0)}) {
-    const double ds = -f.A_s / g;
+    const double ds = -f.A_s * inv_g;
     const double S = f.A_s + f.A_l;
-    const double beta = f.wl_t - f.ws_t / (m * k);
+    const double beta = f.wl_t - f.ws_t * constants_.inv_mk;
     const double C = m * need[f.l] - ds;
     const double plain = std::sqrt(S * S + beta * beta);  // the slip's size at lambda = 0
     if (!(C > 0 && plain - mu * S > 0)) continue;
     // phi(lambda) = lambda |slip(lambda)| - mu (C + lambda S): convex and increasing from
-    // -mu C. Newton from the root with gamma = 0, which lies below it, steps over the root once
-    // (the tangent of a convex function lies below it) and then comes down to it monotonically.
-    // With q = 1 + lambda gamma and R = sqrt(S^2 q^2 + beta^2) = q |slip|, its step phi / phi' is
+    // -mu C, so that Newton's method converges to its root from either side (from below it
+    // steps over the root once: the tangent of a convex function lies below it). With
+    // q = 1 + lambda gamma and R = sqrt(S^2 q^2 + beta^2) = q |slip|, its step phi / phi' is
     //   (lambda R^2 q - mu (C + lambda S) R q^2) / (R^2 q - lambda gamma beta^2 - mu S R q^2),
     // one square root and one division, the only waits on the iteration's path.
-    double lambda = mu * C / (plain - mu * S);
+    // It starts from the root with S left out of |slip|, lambda |beta| = mu (C + lambda S) q, a
+    // quadratic whose small term a = mu^2 gamma S C is taken to first order: the root itself
+    // when S = 0, and within some (S q / beta)^2 of it otherwise. A marble rolling along a wall
+    // has S at rounding's size (the two surfaces move as one board: they ask the same motion
+    // across them), and the first step finds nothing left to do: the answer waits on one
+    // division, where from the root with gamma = 0 it waited on three steps. (That root, below
+    // phi's, is the start where this one fails.)
+    const double b = std::abs(beta) - mu * S - mu * C * gamma, a = mu * mu * gamma * S * C;
+    double lambda = mu * C * b / (b * b - a);
+    if (!(b > 0 && b * b - a > 0)) lambda = mu * C / (plain - mu * S);
     double last_step = 0;
     bool converged = false;
     for (int iteration = 0; iteration < 20 && !converged; ++iteration) {
@@ -108,18 +118,25 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
       const double slope = R2 * q - lambda * gamma * beta * beta - mu * S * R * q * q;
       if (!(slope > 0)) break;
       const double step = (lambda * R2 * q - mu * (C + lambda * S) * R * q * q) / slope;
+      // A step within what rounding makes of phi (its two terms cancel to some ulps of mu C,
+      // 1e-16 to 1e-15 of lambda) is no step: lambda is the root as nearly as phi tells, and is
+      // kept, so that what follows need not wait for the step's square root and division (the
+      // branch is foreseen).
+      if (std::abs(step) <= 1e-15 * lambda) {
+        converged = true;
+        break;
+      }
       const double next = lambda - step;
       // Newton's error squares each step (times phi'' / 2 phi', estimated from the last two
       // steps): done when what it leaves is below rounding, without a further step to see it.
-      converged = std::abs(step) <= 1e-15 * next ||
-                  (std::abs(step) <= 1e-6 * next && last_step != 0 &&
-                   std::abs(step * step * step) <= 1e-17 * next * last_step * last_step);
+      converged = std::abs(step) <= 1e-6 * next && last_step != 0 &&
+                  std::abs(step * step * step) <= 1e-17 * next * last_step * last_step;
       last_step = step;
       lambda = next;
     }
     if (!(converged && lambda > 0)) continue;
     const double fl_a = -lambda * S, fl_b = -lambda * beta / (1 + lambda * gamma);
-    const double fs_a = fl_a + ds, fs_b = -(f.ws_t + fl_b / m) / k;
+    const double fs_a = fl_a + ds, fs_b = -(f.ws_t + fl_b * inv_m) * inv_k;
     if (!inCone(fs_a, fs_b, m * need[f.s] - fl_a)) continue;
     if (take(f, fs_a, fs_b, fl_a, fl_b)) return true;
   }

@@ -50,6 +50,10 @@ ContactSolver::ContactSolver(const Params& params)
   m.k = 1 / m.mass + m.g;
   m.tangent_mass = 1.0 / (m.inv_mass + m.radius * m.radius * m.inv_inertia);
   m.gamma = m.k - 1 / (m.mass * m.mass * m.k);
+  m.inv_g = 1 / m.g;
+  m.inv_k = 1 / m.k;
+  m.inv_mk = 1 / (m.mass * m.k);
+  m.inv_stick_det = 1 / (m.k * m.k - m.inv_mass * m.inv_mass);
 }
 
 bool ContactSolver::anyImpact(const std::vector<Contact>& contacts, const Vec3& velocity) const {

@@ -360,6 +360,86 @@ TEST(Impact, TwoContactsAtRightAnglesAreSolvedExactly) {
   EXPECT_GT(body.linear.y(), 0.29);
 }
 
+TEST(Impact, AFloorAndAWallOneSlippingKeepToCoulombsLaw) {
+  // A marble rolling along the foot of a wall, pressed into it and the floor, on a board at rest
+  // and on one turning, the groove at any angle in the world: whatever the pair solver takes its
+  // frictions from (a closed form where the slip across the groove is nil or rounding's, as the
+  // surfaces of one rigid board leave it, Newton's method elsewhere), each contact must keep to
+  // its law. Neither normal approaches; a contact
+  // that sticks leaves no slip, its friction within its cone; one that slips is held back by mu
+  // times its normal impulse, against its slip. The frictions are read back from the velocities'
+  // changes (impulse and angular impulse) with the solver's normal impulses.
+  std::mt19937_64 random(23);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const auto vec = [&](double size) -> Vec3 {
+    return Vec3(unit(random), unit(random), unit(random)) * size;
+  };
+  Params p;
+  ContactSolver solver(p);
+  const double m = p.marbleMass(), I = p.marbleInertia(), r = p.marble_radius, mu = p.friction;
+  int slipping = 0, across = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Mat3 turn = Eigen::AngleAxisd(kPi * unit(random), vec(1).normalized()).toRotationMatrix();
+    const Vec3 floor = turn * Vec3::UnitZ(), wall = turn * Vec3::UnitX(), along = floor.cross(wall);
+    // A board at rest, or one turning at up to 1 rad/s about a pivot some centimetres away.
+    const Vec3 spin = k % 2 ? Vec3(Vec3::Zero()) : vec(1), centre = vec(0.1);
+    std::vector<Contact> groove(2);
+    groove[0].normal = floor;
+    groove[1].normal = wall;
+    for (Contact& c : groove) c.surface_velocity = spin.cross(centre - r * c.normal);
+    // Surfaces that do not move as one (an impact's, met at a tile's point, need not) leave a
+    // slip across the groove that no friction changes, and Newton's method finds the frictions.
+    if (k % 3 == 0) groove[1].surface_velocity += 0.001 * unit(random) * floor;
+    // Rolling along the groove at 0.05 to 0.5 m/s, slipping on the floor by up to 0.1 mm/s, and
+    // pressed into the floor harder than into the wall (up to a step of gravity): the floor's
+    // friction stops its slip and the wall's against the roll, which the wall's cannot: the
+    // floor sticks and the wall slips, the case the pair solver answers (both slipping is the
+    // sweeps').
+    const double speed = (k % 4 < 2 ? 1 : -1) * (0.05 + 0.45 * std::abs(unit(random)));
+    Velocities body;
+    body.linear = spin.cross(centre) + speed * along -
+                  (0.004 + 0.006 * std::abs(unit(random))) * floor -
+                  (0.001 + 0.002 * std::abs(unit(random))) * wall;
+    body.angular = spin + floor.cross(speed * along) / r + vec(0.0001 / r);
+    const Velocities before = body;
+    std::vector<ContactOutcome> outcomes;
+    solver.constrain(groove, &body, &outcomes);
+    // The frictions, f_floor across the floor's normal and f_wall across the wall's:
+    // m dv = N_floor floor + N_wall wall + f_floor + f_wall, I dw = -r (floor x f_floor + wall x
+    // f_wall). In the groove's frame (floor z, wall x, along y) they are its components.
+    const Vec3 impulse = turn.transpose() * (m * (body.linear - before.linear));
+    const Vec3 turning = turn.transpose() * (I * (body.angular - before.angular)) / r;
+    const double N_floor = outcomes[0].normal_impulse, N_wall = outcomes[1].normal_impulse;
+    const Vec3 f_floor = turn * Vec3(impulse.x() - N_wall, turning.x(), 0);
+    const Vec3 f_wall = turn * Vec3(0, -turning.z(), impulse.z() - N_floor);
+    const double scale = 0.5;  // m/s: the speeds' size, for rounding's
+    ASSERT_GT(N_floor, 0) << k;
+    ASSERT_GT(N_wall, 0) << k;
+    const auto slip = [&](const Contact& c) {
+      const Vec3 s = body.linear + body.angular.cross(-r * c.normal) - c.surface_velocity;
+      return Vec3(s - s.dot(c.normal) * c.normal);
+    };
+    for (int i = 0; i < 2; ++i) {
+      const Contact& c = groove[i];
+      const Vec3 f = i == 0 ? f_floor : f_wall;
+      const double N = outcomes[i].normal_impulse;
+      EXPECT_NEAR((body.linear - c.surface_velocity).dot(c.normal), 0, 1e-15 * scale) << k;
+      EXPECT_NEAR(f.dot(c.normal), 0, 1e-12 * N) << k;  // (the frictions read back as such)
+      const Vec3 s = slip(c);
+      if (s.norm() <= 1e-14 * scale) {  // sticks
+        EXPECT_LE(f.norm(), mu * N * (1 + 1e-9)) << k;
+        continue;
+      }
+      ++slipping;
+      EXPECT_NEAR(f.norm(), mu * N, 1e-9 * mu * N) << k << " contact " << i;
+      EXPECT_LT(f.dot(s), -(1 - 1e-9) * f.norm() * s.norm()) << k << " contact " << i;
+    }
+    across += std::abs(slip(groove[1]).dot(floor)) > 1e-6;
+  }
+  EXPECT_GT(slipping, 5000);
+  EXPECT_GT(across, 1000);
+}
+
 TEST(Impact, ThreeContactsAtRightAnglesAreSolvedExactly) {
   // A marble wedged in a corner (the floor and two walls: normals z, x and y) of a board turning
   // at 0.36 rad/s about its pivot, 6 cm away. A step of gravity presses it into all three and it

@@ -128,19 +128,21 @@ void ContactSolver::constrainOne(const Contact& c, Velocities* body, ContactOutc
   const Vec3& n = c.normal;
   const double impulse =
       std::max(0.0, 0.0 + (0.0 - (velocity - c.surface_velocity).dot(n)) * constants_.mass);
-  velocity += impulse * constants_.inv_mass * n;
   o->normal_impulse = impulse;
   Vec3 friction = Vec3::Zero();
   if (params_.model == Model::Rolling && params_.friction > 0) {
     const Vec3 arm = -constants_.radius * n;
-    const Vec3 slip = velocity + spin.cross(arm) - c.surface_velocity;
+    const Vec3 slip = velocity + spin.cross(arm) - c.surface_velocity;  // (before the impulse)
     const Vec3 tangential_slip = slip - slip.dot(n) * n;
     friction = Vec3::Zero() - tangential_slip * constants_.tangent_mass;
     const double limit = params_.friction * impulse;
     const double size2 = friction.squaredNorm();
     if (size2 > limit * limit) friction *= limit / std::sqrt(size2);
+    velocity += impulse * constants_.inv_mass * n;
     velocity += friction * constants_.inv_mass;
     spin += arm.cross(friction) * constants_.inv_inertia;
+  } else {
+    velocity += impulse * constants_.inv_mass * n;
   }
   body->linear = velocity;
   body->angular = spin;
@@ -181,13 +183,16 @@ void ContactSolver::iterate(const std::vector<Contact>& contacts, double restitu
       const double impulse =
           std::max(0.0, o.normal_impulse + normalNeed(c, o, restitution, velocity) * mass);
       const double normal_change = impulse - o.normal_impulse;
+      // The slip at the contact point is taken before the normal impulse changes the velocity:
+      // it changes it only along the normal, which the slip's tangential part leaves out, and
+      // so the friction need not wait for the impulse.
+      const Vec3 arm = -r * c.normal;
+      const Vec3 slip = velocity + spin.cross(arm) - c.surface_velocity;
       velocity += normal_change * inv_mass * c.normal;
       largest_change2 = std::max(largest_change2, normal_change * normal_change);
       o.normal_impulse = impulse;
       if (!rolling) continue;
       // Coulomb friction at the contact point: stop slipping, within mu times the normal impulse.
-      const Vec3 arm = -r * c.normal;
-      const Vec3 slip = velocity + spin.cross(arm) - c.surface_velocity;
       const Vec3 tangential_slip = slip - slip.dot(c.normal) * c.normal;
       Vec3 total = friction_impulses_[i] - tangential_slip * tangent_mass;
       const double limit = params_.friction * impulse;

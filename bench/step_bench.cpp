@@ -30,7 +30,8 @@ const mm::Scene& sceneOfSize(int cells) {
   return it->second;
 }
 
-/// The timed loop (step_loop.h), and what the steps cost in counts: substeps, sweeps, gathers.
+/// The timed loop (step_loop.h), and what the steps cost in counts: substeps, sweeps, gathers,
+/// tiles swept, and the pair solver's Newton steps a solve.
 void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_every = 0) {
   const mm::StepCounts before = sim->counts();
   const std::size_t n = mm::bench::stepUnderCirclingTilt(state, sim, restart_every);
@@ -43,6 +44,9 @@ void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_
   state.counters["gathers/step"] = static_cast<double>(after.gathers - before.gathers) / steps;
   state.counters["tiles/step"] =
       static_cast<double>(after.tiles_swept - before.tiles_swept) / steps;
+  state.counters["newton/pair"] =
+      static_cast<double>(after.pairs.newton_steps - before.pairs.newton_steps) /
+      static_cast<double>(std::max<std::uint64_t>(after.pairs.solves - before.pairs.solves, 1));
 }
 
 /// With MARBLE_MAZE_BENCH_STEPS set (make instructions sets it), a case runs exactly that many

@@ -4,6 +4,7 @@
 // In the rolling model Coulomb friction acts at each contact point as well.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "marble_maze/collision.h"
@@ -19,6 +20,14 @@ struct ContactOutcome {
 
   /// The contact holds the marble on the tile (pressing, not bouncing off).
   bool holds() const { return !bounce && normal_impulse > 0; }
+};
+
+/// How often the pair solver went to Newton's method, and the steps it took there: a count, the
+/// same on every machine, that make bench shows and a test bounds (a marble rolling along a
+/// wall takes one step a solve).
+struct PairSolveCounts {
+  std::uint64_t solves = 0;
+  std::uint64_t newton_steps = 0;
 };
 
 class ContactSolver {
@@ -41,6 +50,7 @@ class ContactSolver {
   /// of each contact's impulse dotted with its surface's velocity (0 on a board at rest). The
   /// marble's energy gain from a solve is at most this.
   double surfaceWork() const { return surface_work_; }
+  const PairSolveCounts& pairCounts() const { return pair_counts_; }
 
  private:
   void iterate(const std::vector<Contact>& contacts, double restitution, Velocities* body,
@@ -91,6 +101,7 @@ class ContactSolver {
   MarbleConstants constants_;
   std::vector<Vec3> friction_impulses_;  // reused: no allocation per step
   double surface_work_ = 0;
+  PairSolveCounts pair_counts_;
 };
 
 }  // namespace marble_maze

@@ -50,6 +50,7 @@ struct StepCounts {
   std::uint64_t tiles_swept = 0;
   std::uint64_t sweeps_clear = 0;  ///< sweeps answered by the near tiles, without a walk
   std::uint64_t gathers = 0;       ///< times the near tiles were gathered anew from the grid
+  PairSolveCounts pairs;           ///< the contact solver's pairs: Newton's method and its steps
 };
 
 /// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical
@@ -123,6 +124,9 @@ class Simulation {
   StepCounts counts() const {
     StepCounts counts = counts_;
     counts.gathers = near_.gathers;  // counted where the tiles are gathered
+    // (Those of the solvers setParams replaced are in counts_.)
+    counts.pairs.solves += solver_.pairCounts().solves;
+    counts.pairs.newton_steps += solver_.pairCounts().newton_steps;
     return counts;
   }
 

@@ -113,7 +113,9 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
     if (!(b > 0 && b * b - a > 0)) lambda = mu * C / (plain - mu * S);
     double last_step = 0;
     bool converged = false;
+    ++pair_counts_.solves;
     for (int iteration = 0; iteration < 20 && !converged; ++iteration) {
+      ++pair_counts_.newton_steps;
       const double q = 1 + lambda * gamma, R2 = S * S * q * q + beta * beta, R = std::sqrt(R2);
       const double slope = R2 * q - lambda * gamma * beta * beta - mu * S * R * q * q;
       if (!(slope > 0)) break;

@@ -74,6 +74,9 @@ struct NearTiles {
   bool one_full_layer = false;
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();       ///< grid frame, the tiles' bounding box
   Index3 first = Index3::Zero(), last = Index3::Zero();  ///< the tiles' lowest and highest slots
+  /// The one of them under the centre of the last query the layer answered: the likeliest under
+  /// the next (the query checks that it is).
+  std::size_t under = 0;
   std::uint64_t gathers = 0;  ///< how often they were gathered from the grid
 };
 

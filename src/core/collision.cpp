@@ -97,32 +97,40 @@ void markOneFullLayer(NearTiles* near) {
 /// first tile in the grid's order under c, or none when c is out of reach of it. (Every other
 /// tile has a neighbour in the layer on the side towards c: its feature nearest c lies on a face
 /// shared with a solid tile, inside the union.) False, with nothing found, elsewhere.
-bool contactWithOneFullLayer(const Maze& maze, const NearTiles& near, const Vec3& c, double radius,
+bool contactWithOneFullLayer(const Maze& maze, NearTiles* near, const Vec3& c, double radius,
                              double reach, std::vector<Contact>* contacts) {
-  if (!(c.x() >= near.lower.x() && c.x() <= near.upper.x() && c.y() >= near.lower.y() &&
-        c.y() <= near.upper.y() && c.z() > near.upper.z()))
+  if (!(c.x() >= near->lower.x() && c.x() <= near->upper.x() && c.y() >= near->lower.y() &&
+        c.y() <= near->upper.y() && c.z() > near->upper.z()))
     return false;
-  const double height = c.z() - near.upper.z();
+  const double height = c.z() - near->upper.z();
   const double distance2 = height * height;
   // (Below the smallest normal number the look at each tile takes another branch.)
   if (distance2 < std::numeric_limits<double>::min()) return false;
   if (distance2 >= reach * reach) return true;  // out of reach: no contact
-  // The tile under c, found by its slots rather than by a search whose end would move from
-  // query to query (a branch the processor guesses wrong): on a seam c lies in the tiles either
-  // side of it, and the lower one is the first in the grid's order.
-  const int columns = near.last.x() - near.first.x() + 1;
-  const auto under = [&](int i, int j) -> const NearTiles::Tile& {
-    return near
-        .tiles[static_cast<std::size_t>((j - near.first.y()) * columns + i - near.first.x())];
-  };
-  int i = std::clamp(maze.axis(0).slotAt(c.x()), near.first.x(), near.last.x());
-  int j = std::clamp(maze.axis(1).slotAt(c.y()), near.first.y(), near.last.y());
-  if (i > near.first.x() && c.x() <= under(i - 1, j).box.upper.x()) --i;
-  if (j > near.first.y() && c.y() <= under(i, j - 1).box.upper.y()) --j;
-  const NearTiles::Tile& tile = under(i, j);
+  // The tile under c: most often the one under the last query's centre (a marble moves a
+  // millimetre or less a step over tiles of centimetres), when c lies inside it and off its
+  // edges, where no seam rule or rounding of the slots' formula can pick another.
+  const NearTiles::Tile* tile = &near->tiles[near->under];
+  const Box& last = tile->box;
+  if (!(c.x() > last.lower.x() && c.x() < last.upper.x() && c.y() > last.lower.y() &&
+        c.y() < last.upper.y())) {
+    // Else found by its slots rather than by a search whose end would move from query to query
+    // (a branch the processor guesses wrong): on a seam c lies in the tiles either side of it,
+    // and the lower one is the first in the grid's order.
+    const int columns = near->last.x() - near->first.x() + 1;
+    const auto at = [&](int i, int j) {
+      return static_cast<std::size_t>((j - near->first.y()) * columns + i - near->first.x());
+    };
+    int i = std::clamp(maze.axis(0).slotAt(c.x()), near->first.x(), near->last.x());
+    int j = std::clamp(maze.axis(1).slotAt(c.y()), near->first.y(), near->last.y());
+    if (i > near->first.x() && c.x() <= near->tiles[at(i - 1, j)].box.upper.x()) --i;
+    if (j > near->first.y() && c.y() <= near->tiles[at(i, j - 1)].box.upper.y()) --j;
+    near->under = at(i, j);
+    tile = &near->tiles[near->under];
+  }
   // (The slots' formula and the tiles' bounds may round apart by a hair: then each tile is
   // looked at.)
-  const Box& box = tile.box;
+  const Box& box = tile->box;
   if (!(c.x() >= box.lower.x() && c.x() <= box.upper.x() && c.y() >= box.lower.y() &&
         c.y() <= box.upper.y()))
     return false;
@@ -133,7 +141,7 @@ bool contactWithOneFullLayer(const Maze& maze, const NearTiles& near, const Vec3
   contact.surface_velocity = Vec3::Zero();  // (the world's normal and this: below, as for all)
   contact.depth = radius - height;
   contact.grid_point = Vec3(c.x(), c.y(), box.upper.z());
-  contact.tile = tile.index;
+  contact.tile = tile->index;
   contacts->push_back(contact);
   return true;
 }
@@ -522,6 +530,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       near->centre = c;
       near->tiles.clear();
       near->layers.clear();
+      near->under = 0;
       ++near->gathers;
       forEachSolidTileAround(maze, c, near->reach, [&](const Index3& t, const Box& box) {
         if (near->tiles.empty() || near->tiles.back().index.z() != t.z())
@@ -538,7 +547,7 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       });
       markOneFullLayer(near);
     }
-    if (!(near->one_full_layer && contactWithOneFullLayer(maze, *near, c, radius, reach, contacts)))
+    if (!(near->one_full_layer && contactWithOneFullLayer(maze, near, c, radius, reach, contacts)))
       for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
   }
   for (Contact& contact : *contacts) {

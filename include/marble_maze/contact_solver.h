@@ -28,6 +28,11 @@ struct ContactOutcome {
 struct PairSolveCounts {
   std::uint64_t solves = 0;
   std::uint64_t newton_steps = 0;
+  PairSolveCounts& operator+=(const PairSolveCounts& other) {
+    solves += other.solves;
+    newton_steps += other.newton_steps;
+    return *this;
+  }
 };
 
 class ContactSolver {

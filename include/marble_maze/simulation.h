@@ -125,8 +125,7 @@ class Simulation {
     StepCounts counts = counts_;
     counts.gathers = near_.gathers;  // counted where the tiles are gathered
     // (Those of the solvers setParams replaced are in counts_.)
-    counts.pairs.solves += solver_.pairCounts().solves;
-    counts.pairs.newton_steps += solver_.pairCounts().newton_steps;
+    counts.pairs += solver_.pairCounts();
     return counts;
   }
 

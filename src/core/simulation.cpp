@@ -101,8 +101,7 @@ void Simulation::setParams(const Params& params) {
   if (!too_many.empty()) throw ParamError("step: " + too_many);
   params_ = params;
   board_.setLimits(params_);
-  counts_.pairs.solves += solver_.pairCounts().solves;  // (counts() adds the new solver's)
-  counts_.pairs.newton_steps += solver_.pairCounts().newton_steps;
+  counts_.pairs += solver_.pairCounts();  // (counts() adds the new solver's)
   solver_ = ContactSolver(params_);
   forces_ = FieldForces(params_);
   integrator_ = &integratorFor(params_.integrator);

@@ -38,6 +38,10 @@ struct GridFrame {
 
 /// The marble touching one tile.
 struct Contact {
+  /// (Provided, so that a contact made in place, as a vector's emplace_back() makes it, is not
+  /// zeroed first: its vectors are all written before they are read, as when it is declared.)
+  Contact() {}
+
   Vec3 normal;       ///< world, unit, from the tile towards the marble's centre
   Vec3 grid_normal;  ///< the same in the grid frame, where the tiles do not turn
   Vec3 grid_point;   ///< the tile's closest point, in the grid frame (where the sweep wants it)

@@ -134,15 +134,13 @@ bool contactWithOneFullLayer(const Maze& maze, NearTiles* near, const Vec3& c, d
   if (!(c.x() >= box.lower.x() && c.x() <= box.upper.x() && c.y() >= box.lower.y() &&
         c.y() <= box.upper.y()))
     return false;
-  // (Built here and copied in, as a look at each tile adds it: emplace_back() would zero it
-  // first with a string instruction, which costs more than the rest of this.)
-  Contact contact;
-  contact.normal = contact.grid_normal = Vec3::UnitZ();
-  contact.surface_velocity = Vec3::Zero();  // (the world's normal and this: below, as for all)
+  // (Made in place: built apart and copied in, its copy read what its stores had just written
+  // in other pieces, and waited for them to reach the cache.)
+  Contact& contact = contacts->emplace_back();
+  contact.normal = Vec3::UnitZ();  // (the world's normal and the surface's velocity: below)
   contact.depth = radius - height;
   contact.grid_point = Vec3(c.x(), c.y(), box.upper.z());
   contact.tile = tile->index;
-  contacts->push_back(contact);
   return true;
 }
 

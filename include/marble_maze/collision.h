@@ -122,8 +122,9 @@ struct Sweep {
   Vec3 rate(double s) const { return path + 2 * s * bend; }  ///< d centre / ds
   /// True when the walk of the grid (timeOfImpact) would report no impact: the path stays where
   /// the near tiles were gathered, and each of them lies behind a plane it keeps to (as the walk
-  /// judges it) or farther from its start than the radius plus how far it strays (bounded by the
-  /// sums of the sizes of path's and bend's components). False says nothing.
+  /// judges it), farther from its start than the radius plus how far it strays (bounded by the
+  /// sums of the sizes of path's and bend's components), or else is passed over by the walk's
+  /// own tests before it seeks a root (a wall beside the path). False says nothing.
   bool clearOf(const NearTiles& near) const;
 };
 

@@ -309,6 +309,41 @@ bool comesBack(const Sweep& w, const Vec3& away) {
   return rate > w.resting_rate && bend < 0 && rate <= -2 * bend;  // back by about s = 1
 }
 
+/// What the walk's tests of a tile take from its sweep, worked out once.
+struct SweepReach {
+  explicit SweepReach(const Sweep& w)
+      : touching((w.radius + w.margin) * (w.radius + w.margin)),
+        farthest(farthestReach(w)),
+        chord(w.path + w.bend),
+        sag(0.25 * w.bend.norm()),  // the farthest a bent path strays from its chord
+        bent(sag > 0) {}
+
+  double touching;  ///< squared: a tile closer to the start is touched there
+  double farthest;  ///< no tile farther from the start can be met
+  Vec3 chord;
+  double sag;
+  bool bent;
+};
+
+/// Whether the walk passes over the tile before seeking any root: behind a plane the path keeps
+/// to; touched at the start by a path that cannot come back to it (a contact); beyond the
+/// marble's farthest reach; or, the path's chord grown by the radius and the sag missing it, the
+/// slab test with which the exact tests begin. (One function for the walk and Sweep::clearOf, so
+/// that a path clearOf lets by is one the walk finds no impact on, to the bit.)
+bool passedOver(const Sweep& w, const SweepReach& s, const Box& box, Vec3* away = nullptr,
+                bool* touches = nullptr) {
+  if (behindAPlane(w, box)) return true;
+  const Vec3 gap = w.from - closestPoint(box, w.from);
+  const bool touching = gap.squaredNorm() < s.touching;
+  if (away) *away = gap;
+  if (touches) *touches = touching;
+  if (touching && !(s.bent && comesBack(w, gap))) return true;
+  if (gap.squaredNorm() > s.farthest * s.farthest) return true;
+  if (touching) return false;  // a path leaving it may come back onto it: a root decides
+  return s.bent ? !segmentMeetsBox(w.from, s.chord, box, w.radius + s.sag)
+                : !segmentMeetsBox(w.from, w.path, box, w.radius);
+}
+
 /// The range of one coordinate of a bent path over s in [0, 1].
 void coordinateRange(const Sweep& w, int a, double* lo, double* hi) {
   const double end = w.from[a] + w.path[a] + w.bend[a];
@@ -582,7 +617,14 @@ bool Sweep::clearOf(const NearTiles& near) const {
     clear &= behindAPlane(*this, box) |
              ((from - closestPoint(box, from)).squaredNorm() > farthest * farthest);
   }
-  return clear;
+  if (clear) return true;
+  // Some tile lies within the marble's reach: a marble rolling beside a wall it does not touch,
+  // or towards one. The walk's own tests before any root then say whether its path can meet
+  // them, without its walk of the grid's slots.
+  const SweepReach reach(*this);
+  for (std::size_t i = first; i < near.tiles.size(); ++i)
+    if (!passedOver(*this, reach, near.tiles[i].box)) return false;
+  return true;
 }
 
 bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {
@@ -596,16 +638,14 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     const Vec3 grow = Vec3::Constant(radius + w.margin);
     if (!overlapsGrid(maze, lo - grow, hi + grow)) return false;
   }
-  const Vec3 chord = w.path + w.bend;
-  const double sag = 0.25 * w.bend.norm();  // the farthest a bent path strays from its chord
-  const bool bent = sag > 0;
   // The path's speed along s is largest at an end (its norm is convex), which bounds its length.
   const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
   if (!(length > 0)) return false;
-  const double touching = (radius + w.margin) * (radius + w.margin);
-  // Tiles beyond the marble's farthest reach, which the walk's boxes take in at their corners,
-  // are passed over before any root is sought.
-  const double farthest = farthestReach(w);
+  // (Tiles beyond the marble's farthest reach, which the walk's boxes take in at their corners,
+  // are passed over before any root is sought, with others no root can be found on.)
+  const SweepReach reach(w);
+  const double sag = reach.sag;
+  const bool bent = reach.bent;
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();
@@ -615,18 +655,16 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     const double s1 = static_cast<double>(piece + 1) / pieces;
     const Vec3 a = w.at(s0), b = w.at(s1);
     // A piece strays from its own chord by the path's sag times its share of s squared.
-    const Vec3 reach = Vec3::Constant(radius + sag / (static_cast<double>(pieces) * pieces));
-    TileRange range = tileRange(maze, a.cwiseMin(b) - reach, a.cwiseMax(b) + reach);
+    const Vec3 grow = Vec3::Constant(radius + sag / (static_cast<double>(pieces) * pieces));
+    TileRange range = tileRange(maze, a.cwiseMin(b) - grow, a.cwiseMax(b) + grow);
     narrowToPlanes(maze, w, &range);
     forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
       ++hit->tiles_visited;
-      if (behindAPlane(w, box)) return;
-      // A tile touched at the start is a contact, left to findContacts, unless a bent path is
-      // leaving it: that path may come back to it in this stretch (a small bounce).
-      const Vec3 away = w.from - closestPoint(box, w.from);
-      const bool touches = away.squaredNorm() < touching;
-      if (touches && !(bent && comesBack(w, away))) return;
-      if (away.squaredNorm() > farthest * farthest) return;
+      // (A tile touched at the start is a contact, left to findContacts, unless a bent path is
+      // leaving it: that path may come back to it in this stretch, a small bounce.)
+      Vec3 away;
+      bool touches;
+      if (passedOver(w, reach, box, &away, &touches)) return;
       double time;
       Vec3 q;
       if (touches) {
@@ -637,8 +675,6 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
         if (!firstDescent(c, 2, 0, std::min(1.0, best), &time) || time >= best) return;
         q = closestPoint(box, w.at(time));
       } else if (bent) {
-        // The chord grown by the sag rules out most tiles before the exact test.
-        if (!segmentMeetsBox(w.from, chord, box, radius + sag)) return;
         if (!bentSphereBoxImpact(maze, t, w, box, best, &time, &q)) return;
       } else if (!sphereBoxImpact(w.from, w.path, radius, box, &time, &q) || time >= best) {
         return;

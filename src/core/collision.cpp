@@ -312,29 +312,31 @@ bool comesBack(const Sweep& w, const Vec3& away) {
 /// What the walk's tests of a tile take from its sweep, worked out once.
 struct SweepReach {
   explicit SweepReach(const Sweep& w)
-      : touching((w.radius + w.margin) * (w.radius + w.margin)),
+      : touching2((w.radius + w.margin) * (w.radius + w.margin)),
         farthest(farthestReach(w)),
         chord(w.path + w.bend),
         sag(0.25 * w.bend.norm()),  // the farthest a bent path strays from its chord
         bent(sag > 0) {}
 
-  double touching;  ///< squared: a tile closer to the start is touched there
-  double farthest;  ///< no tile farther from the start can be met
+  double touching2;  ///< a tile closer to the start than its square root is touched there
+  double farthest;   ///< no tile farther from the start can be met
   Vec3 chord;
   double sag;
   bool bent;
 };
 
 /// Whether the walk passes over the tile before seeking any root: behind a plane the path keeps
-/// to; touched at the start by a path that cannot come back to it (a contact); beyond the
-/// marble's farthest reach; or, the path's chord grown by the radius and the sag missing it, the
-/// slab test with which the exact tests begin. (One function for the walk and Sweep::clearOf, so
-/// that a path clearOf lets by is one the walk finds no impact on, to the bit.)
+/// to; touched at the start (a contact, left to findContacts) by a path that cannot come back to
+/// it, as a bent path leaving it may within the stretch (a small bounce); beyond the marble's
+/// farthest reach; or, the path's chord grown by the radius and the sag missing it, the slab test
+/// with which the exact tests begin. `away` (from the tile to the start) and `touches`, when
+/// asked for, are what the walk's exact tests go on with. (One function for the walk and
+/// Sweep::clearOf, so that a path clearOf lets by is one the walk finds no impact on, to the bit.)
 bool passedOver(const Sweep& w, const SweepReach& s, const Box& box, Vec3* away = nullptr,
                 bool* touches = nullptr) {
   if (behindAPlane(w, box)) return true;
   const Vec3 gap = w.from - closestPoint(box, w.from);
-  const bool touching = gap.squaredNorm() < s.touching;
+  const bool touching = gap.squaredNorm() < s.touching2;
   if (away) *away = gap;
   if (touches) *touches = touching;
   if (touching && !(s.bent && comesBack(w, gap))) return true;
@@ -621,9 +623,9 @@ bool Sweep::clearOf(const NearTiles& near) const {
   // Some tile lies within the marble's reach: a marble rolling beside a wall it does not touch,
   // or towards one. The walk's own tests before any root then say whether its path can meet
   // them, without its walk of the grid's slots.
-  const SweepReach reach(*this);
+  const SweepReach sweep_reach(*this);
   for (std::size_t i = first; i < near.tiles.size(); ++i)
-    if (!passedOver(*this, reach, near.tiles[i].box)) return false;
+    if (!passedOver(*this, sweep_reach, near.tiles[i].box)) return false;
   return true;
 }
 
@@ -643,9 +645,9 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   if (!(length > 0)) return false;
   // (Tiles beyond the marble's farthest reach, which the walk's boxes take in at their corners,
   // are passed over before any root is sought, with others no root can be found on.)
-  const SweepReach reach(w);
-  const double sag = reach.sag;
-  const bool bent = reach.bent;
+  const SweepReach sweep_reach(w);
+  const double sag = sweep_reach.sag;
+  const bool bent = sweep_reach.bent;
   const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
   double best = kNone;
   Index3 best_tile = Index3::Zero();
@@ -660,11 +662,9 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     narrowToPlanes(maze, w, &range);
     forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
       ++hit->tiles_visited;
-      // (A tile touched at the start is a contact, left to findContacts, unless a bent path is
-      // leaving it: that path may come back to it in this stretch, a small bounce.)
       Vec3 away;
       bool touches;
-      if (passedOver(w, reach, box, &away, &touches)) return;
+      if (passedOver(w, sweep_reach, box, &away, &touches)) return;
       double time;
       Vec3 q;
       if (touches) {

@@ -345,40 +345,44 @@ TEST(TimeOfImpact, ABentPathMeetsAnEdgeWhereItsDistanceFirstReachesTheRadius) {
 TEST(SweepClearOf, LetsByAPathBesideAWallThatItDoesNotMeet) {
   // A marble rolling on the floor 50 um from the face of a wall, half a millimetre a stretch:
   // the wall lies within its reach (radius plus path), so only the walk's own tests before any
-  // root can tell whether the path meets it. Along the wall it does not, towards it it does, and
-  // bent towards it by more than the gap it does.
+  // root can tell whether the path meets it. Along the wall it does not, nor bent away from it
+  // (its sag, 25 um, well inside the gap); towards it it does, and bent towards it by more than
+  // the gap. And touching the wall, leaving it: a path that bends back onto it within the
+  // stretch (a small bounce) meets it again, one that bends back too little does not.
   Maze maze(AxisSlots::uniform(0.01, 10), AxisSlots::uniform(0.01, 10),
             AxisSlots::uniform(0.01, 3));
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j) maze.setSolid({i, j, 0}, true);
   for (int j = 2; j < 8; ++j) maze.setSolid({6, j, 1}, true);  // its face at x = 0.06
-  const double r = 0.004, gap = 50e-6;
-  const auto sweepFrom = [&](const Vec3& path, const Vec3& bend, NearTiles* near) {
-    Sweep sweep;
-    sweep.radius = r;
-    sweep.margin = 1e-7;
-    sweep.from = Vec3(0.06 - r - gap, 0.045, 0.01 + r);
-    sweep.path = path;
-    sweep.bend = bend;
-    sweep.keepTo(Vec3::UnitZ(), Vec3(0, 0, 0.01));
-    std::vector<Contact> contacts;
-    near->skin = r;
-    findContacts(maze, GridFrame(), sweep.from, r, sweep.margin, &contacts, near);
-    EXPECT_EQ(contacts.size(), 1u);  // the floor alone
-    return sweep;
-  };
+  const double r = 0.004;
   struct Case {
+    double gap;  // from the wall's face, m
     Vec3 path, bend;
     bool meets;
   };
-  for (const Case& c : {Case{{0, 5e-4, 0}, Vec3::Zero(), false},    // along the wall
-                        Case{{0, -5e-4, 0}, {-2e-4, 0, 0}, false},  // bent away from it
-                        Case{{5e-4, 0, 0}, Vec3::Zero(), true},     // towards it
-                        Case{{0, 5e-4, 0}, {2e-4, 0, 0}, true}}) {  // bent onto it
+  for (const Case& c : {Case{50e-6, {0, 5e-4, 0}, Vec3::Zero(), false},    // along the wall
+                        Case{50e-6, {0, -5e-4, 0}, {-1e-4, 0, 0}, false},  // bent away from it
+                        Case{50e-6, {5e-4, 0, 0}, Vec3::Zero(), true},     // towards it
+                        Case{50e-6, {0, 5e-4, 0}, {2e-4, 0, 0}, true},     // bent onto it
+                        Case{0, {-2e-4, 0, 0}, {3e-4, 0, 0}, true},        // back by s = 2/3
+                        Case{0, {-2e-4, 0, 0}, {0.5e-4, 0, 0}, false}}) {  // not back
+    Sweep sweep;
+    sweep.radius = r;
+    sweep.margin = 1e-7;
+    sweep.from = Vec3(0.06 - r - c.gap, 0.045, 0.01 + r);
+    sweep.path = c.path;
+    sweep.bend = c.bend;
+    sweep.keepTo(Vec3::UnitZ(), Vec3(0, 0, 0.01));
+    std::vector<Contact> contacts;
     NearTiles near;
-    const Sweep sweep = sweepFrom(c.path, c.bend, &near);
+    near.skin = r;
+    findContacts(maze, GridFrame(), sweep.from, r, sweep.margin, &contacts, &near);
+    EXPECT_EQ(contacts.size(), c.gap > 0 ? 1u : 2u);  // the floor, and the wall when touching
     SweepHit hit;
     EXPECT_EQ(timeOfImpact(maze, GridFrame(), sweep, &hit), c.meets) << c.path.transpose();
+    if (c.meets && c.gap == 0) {
+      EXPECT_NEAR(hit.fraction, 2.0 / 3.0, 1e-9);
+    }
     EXPECT_EQ(sweep.clearOf(near), !c.meets) << c.path.transpose();
   }
 }

@@ -1,6 +1,7 @@
 // A tilt program: board angles against time, read from CSV rows "t,roll,pitch".
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,6 +27,10 @@ class TiltSchedule {
   static TiltSchedule load(const std::string& path);
 
   Point at(double time) const;
+  /// The same value as at(time), looked up from `*row`, where the last such call found its
+  /// rows, and leaving there the row it finds: a programme read forward, a step at a time,
+  /// takes no search a step. (*row starts at 0; any value is looked up correctly.)
+  Point at(double time, std::size_t* row) const;
   double duration() const { return points_.empty() ? 0.0 : points_.back().time; }
   /// The largest |roll| or |pitch| it asks for (rad).
   double largestTilt() const;

@@ -54,16 +54,31 @@ TiltSchedule TiltSchedule::load(const std::string& path) {
 }
 
 TiltSchedule::Point TiltSchedule::at(double time) const {
+  std::size_t row = 0;
+  return at(time, &row);
+}
+
+TiltSchedule::Point TiltSchedule::at(double time, std::size_t* row) const {
   if (points_.empty()) return {time, 0, 0};
   if (time <= points_.front().time) return {time, points_.front().roll, points_.front().pitch};
-  // The first point at or after `time`, by bisection: a long programme costs a step no more than
-  // a short one (a walk from the front made a run quadratic in its length).
-  const auto b = std::lower_bound(points_.begin(), points_.end(), time,
-                                  [](const Point& p, double t) { return p.time < t; });
-  if (b == points_.end()) return {time, points_.back().roll, points_.back().pitch};
-  const Point& a = *(b - 1);
-  const double f = (time - a.time) / (b->time - a.time);
-  return {time, a.roll + f * (b->roll - a.roll), a.pitch + f * (b->pitch - a.pitch)};
+  if (time > points_.back().time) return {time, points_.back().roll, points_.back().pitch};
+  // The first point at or after `time` (past the first): the row's or the next (a programme
+  // read forward), else by bisection, so that a long programme costs a step no more than a
+  // short one (a walk from the front made a run quadratic in its length).
+  const auto first_at_or_after = [&](std::size_t i) {
+    return i > 0 && i < points_.size() && points_[i - 1].time < time && time <= points_[i].time;
+  };
+  std::size_t i = *row;
+  if (!first_at_or_after(i) && !first_at_or_after(++i)) {
+    i = static_cast<std::size_t>(
+        std::lower_bound(points_.begin(), points_.end(), time,
+                         [](const Point& p, double t) { return p.time < t; }) -
+        points_.begin());
+  }
+  *row = i;
+  const Point &a = points_[i - 1], &b = points_[i];
+  const double f = (time - a.time) / (b.time - a.time);
+  return {time, a.roll + f * (b.roll - a.roll), a.pitch + f * (b.pitch - a.pitch)};
 }
 
 double TiltSchedule::largestTilt() const {

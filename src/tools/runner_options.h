@@ -3,6 +3,7 @@
 // files written, so that the fuzzer drives it as the program does.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
@@ -57,9 +58,11 @@ Run prepare(const Options& o);
 /// the step's start, as a controller sends it then and the node takes a command at the first
 /// step that starts at or after its stamp (taken at the step's end, the board would act on a
 /// value a step before a controller could send it). Substeps refine the physics between
-/// commands, not the programme.
-inline TiltSchedule::Point tiltBeforeStep(const Options& o, std::uint64_t n, double step) {
-  return o.tilt.at(static_cast<double>(n - 1) * step);
+/// commands, not the programme. (`row`: where the last step's tilt was found in the
+/// programme, which the steps read forward.)
+inline TiltSchedule::Point tiltBeforeStep(const Options& o, std::uint64_t n, double step,
+                                          std::size_t* row) {
+  return o.tilt.at(static_cast<double>(n - 1) * step, row);
 }
 
 }  // namespace runner

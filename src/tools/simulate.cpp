@@ -236,8 +236,9 @@ int run(const Options& o) {
               << steps << (steps == 1 ? " step" : " steps") << " ("
               << mm::exactText(static_cast<double>(steps) * step) << " s)\n";
   std::vector<mm::Event> all_events;
+  std::size_t tilt_row = 0;
   for (std::uint64_t n = 1; n <= steps; ++n) {
-    const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step);
+    const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step, &tilt_row);
     sim->setTargetTilt(tilt.roll, tilt.pitch);
     sim->step();
     all_events.insert(all_events.end(), sim->events().begin(), sim->events().end());

@@ -2,8 +2,11 @@
 // each way a file can be wrong, named with its line.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
+#include <vector>
 
+#include "marble_maze/params.h"
 #include "marble_maze/tilt_schedule.h"
 
 namespace marble_maze {
@@ -41,6 +44,43 @@ TEST(TiltSchedule, ALongProgrammeIsLookedUpAsFastAsAShortOne) {
   for (int k = 0; k < 100000; ++k) text += std::to_string(k) + "," + std::to_string(k) + "e-5,0\n";
   const TiltSchedule s = TiltSchedule::parse(text, "long.csv");
   for (int k = 0; k + 1 < 100000; ++k) ASSERT_NEAR(s.at(k + 0.5).roll, (k + 0.5) * 1e-5, 1e-15);
+}
+
+TEST(TiltSchedule, LookedUpFromARowItIsTheProgrammesValueToTheBitInAnyOrder) {
+  // Uneven rows; times read forward in steps shorter and longer than a row, on the rows
+  // themselves, backward, at random, before the first row and past the last, from any row;
+  // each value against the rows' own interpolation, worked out here by a walk over them.
+  const std::vector<TiltSchedule::Point> rows = {
+      {0, 0.1, -0.2}, {0.3, 0.15, 0}, {0.35, -0.1, 0.05}, {1, 0.2, 0.2}, {2.5, 0, -0.1}};
+  std::string text;
+  for (const auto& r : rows)
+    text += exactText(r.time) + "," + exactText(r.roll) + "," + exactText(r.pitch) + "\n";
+  const TiltSchedule s = TiltSchedule::parse(text, "p.csv");
+  const auto expected = [&](double t) {
+    if (t <= rows.front().time) return rows.front();
+    std::size_t i = 1;
+    while (i < rows.size() && rows[i].time < t) ++i;
+    if (i == rows.size()) return rows.back();
+    const auto &a = rows[i - 1], &b = rows[i];
+    const double f = (t - a.time) / (b.time - a.time);
+    return TiltSchedule::Point{t, a.roll + f * (b.roll - a.roll),
+                               a.pitch + f * (b.pitch - a.pitch)};
+  };
+  std::vector<double> times;
+  for (double t = -0.2; t < 2.8; t += 0.013) times.push_back(t);  // forward, several a row
+  for (double t : {0.0, 0.3, 0.35, 1.0, 2.5, 0.3, 0.0}) times.push_back(t);  // on rows
+  for (double t = 2.7; t > -0.1; t -= 0.29) times.push_back(t);              // backward, by leaps
+  std::mt19937_64 random(7);
+  for (int k = 0; k < 200; ++k) times.push_back(std::uniform_real_distribution<>(-0.5, 3)(random));
+  for (std::size_t start : {std::size_t{0}, std::size_t{3}, std::size_t{5}, std::size_t{1000}}) {
+    std::size_t row = start;
+    for (double t : times) {
+      for (const TiltSchedule::Point& got : {s.at(t, &row), s.at(t)}) {
+        ASSERT_EQ(got.roll, expected(t).roll) << "t = " << t << " from row " << start;
+        ASSERT_EQ(got.pitch, expected(t).pitch) << "t = " << t << " from row " << start;
+      }
+    }
+  }
 }
 
 TEST(TiltSchedule, EachWrongFileIsRefusedNamingItsLine) {

@@ -35,8 +35,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const double step = run.scene.params.step;
     // At most 200 steps and 2000 substeps: the run's start is what is fuzzed, not its length.
     const double steps = std::min(200.0, o.duration / step + 0.5);
+    std::size_t tilt_row = 0;
     for (int n = 1; n <= steps && run.sim->counts().substeps < 2000; ++n) {
-      const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step);
+      const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step, &tilt_row);
       run.sim->setTargetTilt(tilt.roll, tilt.pitch);
       run.sim->step();
     }

@@ -37,7 +37,8 @@ budgets: build
 
 # What holds a step's time, by a model of the processor run on a trace of the step (valgrind's
 # lackey): the chain of dependent values, the width and the window, cycles a step (about 2 minutes
-# a case). CASES: free_flight, open_floor, maze:CELLS; FREE: a regex of functions taken out.
+# a case). CASES: free_flight, open_floor, maze:CELLS; FREE: a regex of functions taken out;
+# MACHINE: the model's rules for another processor, as JSON ('{"window": 224}': a Zen 2's).
 model: build
 	@bash scripts/cycle_model.sh $${CASES:+"$$CASES"}
 

@@ -20,16 +20,20 @@ It reports, in cycles a step: the chain of dependent values alone (no limit on w
 the width alone, the window alone, and both: the model. Run by scripts/cycle_model.sh
 (make model); its own tests are test/tools/test_cycle_model.py.
 
-    cycle_model.py DRIVER_OUTPUT TRACE [--free REGEX] [--chain]
+    cycle_model.py DRIVER_OUTPUT TRACE [--free REGEX] [--chain] [--machine JSON]
 
 DRIVER_OUTPUT is what marble_maze_cycle_driver printed (where its objects and marks are loaded),
 TRACE lackey's log of the same run. --free takes the work of the functions whose names match out
 of the model (no slot, no window entry, no time): what a stage costs. --chain lists the functions
-the chain runs through.
+the chain runs through. --machine sets rules other than the defaults (those of the Intel cores
+these machines mostly had: width 5, window 352, 2 floating-point ports, loads 5 cycles, 12 more
+for several stores' bytes), another processor's: {"window": 224} is an AMD Zen 2's reorder
+buffer.
 """
 import argparse
 import bisect
 import collections
+import json
 import re
 import subprocess
 import sys
@@ -288,16 +292,45 @@ def read_trace(path, mark, end, objects, free=None):
     return windows, steps
 
 
+MACHINE_RULES = ("width", "window", "fp_ports", "load_latency", "mixed_store_penalty")
+
+
+def machine_from_json(text):
+    """The machine's rules that JSON text sets over the defaults (run()'s keywords), e.g. a
+    smaller window {"window": 224}; a rule the model has not, or a value not a positive number
+    (a window of 0: none), is refused naming it."""
+    try:
+        machine = json.loads(text)
+    except ValueError as e:
+        raise ValueError("--machine: not JSON (%s): %r" % (e, text))
+    if not isinstance(machine, dict):
+        raise ValueError("--machine: not a JSON object of rules: %r" % text)
+    for key, value in machine.items():
+        if key not in MACHINE_RULES:
+            raise ValueError("--machine: no rule %r (the rules: %s)" % (key, ", ".join(MACHINE_RULES)))
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or value < 0 or \
+                (value == 0 and key not in ("window", "fp_ports")):
+            raise ValueError("--machine: %s must be a positive number, not %r" % (key, value))
+    return machine
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("driver_output")
     parser.add_argument("trace")
     parser.add_argument("--free", help="regex of functions whose work is taken out of the model")
     parser.add_argument("--chain", action="store_true", help="the functions the chain runs through")
+    parser.add_argument("--machine", default="{}",
+                        help='JSON of rules over the defaults, e.g. {"window": 224} (%s)' %
+                        ", ".join(MACHINE_RULES))
     args = parser.parse_args()
+    try:
+        machine = machine_from_json(args.machine)
+    except ValueError as e:
+        parser.error(str(e))
     loaded, mark, end = read_driver_output(args.driver_output)
     windows, steps = read_trace(args.trace, mark, end, Objects(loaded), args.free)
-    f, chain = figures(windows, steps)
+    f, chain = figures(windows, steps, machine)
     instructions = sum(len(ops) for ops in windows)
     print("%8.0f %8.0f %8.0f %8.0f %8.0f" % (instructions / steps, f["chain"], f["width"],
                                              f["window"], f["model"]))

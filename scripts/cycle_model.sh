@@ -6,7 +6,8 @@
 # their cycles a step: the chain of dependent values alone, the width alone, the window alone,
 # and both. The same build gives the same figures from run to run. FREE, a regex of functions,
 # takes their work out of the model (what a stage costs); CHAIN=1 lists the functions the chain
-# runs through. About 2 minutes a case.
+# runs through; MACHINE, JSON, sets the model's rules for another processor (an AMD Zen 2's
+# window: MACHINE='{"window": 224}'). About 2 minutes a case.
 set -euo pipefail
 . "$(dirname "$0")/workspace.sh"
 driver=$WS/devel/lib/marble_maze/marble_maze_cycle_driver
@@ -20,6 +21,7 @@ trap 'rm -rf "$out"' EXIT
 options=()
 [ -z "${FREE:-}" ] || options+=(--free "$FREE")
 [ -z "${CHAIN:-}" ] || options+=(--chain)
+[ -z "${MACHINE:-}" ] || options+=(--machine "$MACHINE")
 printf '%-14s %8s %8s %8s %8s %8s\n' "case" "instr" "chain" "width" "window" "model"
 for c in $cases; do
   valgrind --tool=lackey --trace-mem=yes --log-file="$out/trace" \

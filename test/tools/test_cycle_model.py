@@ -156,6 +156,26 @@ class FiguresTest(unittest.TestCase):
                          [("solve", 16.0), ("path", 4.0)])
 
 
+class MachineTest(unittest.TestCase):
+    def test_another_processors_rules_come_from_json(self):
+        # Eight independent 20-cycle divisions, as above: a window of 4 (given as --machine
+        # would give it) takes them in two rounds, the default window of 352 in one.
+        ops = [Op("div", reads={"r%d" % (8 + i)}, writes={"r%d" % (8 + i)}) for i in range(8)]
+        small = model.machine_from_json('{"window": 4, "width": 5}')
+        self.assertEqual(small, {"window": 4, "width": 5})
+        self.assertAlmostEqual(model.figures([ops], steps=1)[0]["model"], 20, delta=2)
+        self.assertAlmostEqual(model.figures([ops], steps=1, machine=small)[0]["model"], 40,
+                               delta=2)
+
+    def test_a_rule_the_model_has_not_or_a_wrong_value_is_refused_naming_it(self):
+        for text, named in (('{"windw": 4}', "'windw'"), ('{"window": -1}', "window"),
+                            ('{"width": 0}', "width"), ('{"fp_ports": "two"}', "fp_ports"),
+                            ("[224]", "not a JSON object"), ("window=224", "not JSON")):
+            with self.assertRaises(ValueError, msg=text) as caught:
+                model.machine_from_json(text)
+            self.assertIn(named, str(caught.exception))
+
+
 class TracedStepTest(unittest.TestCase):
     """The whole of make model on a few steps of free flight: the driver, lackey, Capstone."""
 

@@ -33,6 +33,7 @@ buffer.
 import argparse
 import bisect
 import collections
+import inspect
 import json
 import re
 import subprocess
@@ -292,7 +293,8 @@ def read_trace(path, mark, end, objects, free=None):
     return windows, steps
 
 
-MACHINE_RULES = ("width", "window", "fp_ports", "load_latency", "mixed_store_penalty")
+# The rules a machine may set: run()'s keywords, taken from it so that the two cannot differ.
+MACHINE_RULES = tuple(inspect.signature(run).parameters)[1:]
 
 
 def machine_from_json(text):

@@ -454,9 +454,14 @@ class RecordReplayTest(unittest.TestCase):
             time.sleep(3)
             # At half speed: a command that reaches the node after /clock has passed its stamp
             # acts a step late, and play in the maze is chaotic. Seen once in a loaded make test
-            # at full speed (0.22 m apart); the replay node has no such race.
-            player = master.start(["rosbag", "play", "--clock", "-r", "0.5", plain, "--topics",
-                                   "/tilt"])
+            # at full speed (0.22 m apart); the replay node has no such race. With a pause after
+            # each topic is advertised (-d), so that the node is connected before the first
+            # clock and command: a fresh publisher's first messages reach only the subscribers
+            # already connected (without it, on stop 36's slower machine, the node's first step
+            # came 2.8 s of bag time late, its board 0.052 rad behind the recording's, and the
+            # test failed three runs in four).
+            player = master.start(["rosbag", "play", "--clock", "-d", "2", "-r", "0.5", plain,
+                                   "--topics", "/tilt"])
             player.wait(timeout=90)
             time.sleep(1)
             master.stop(recorder)

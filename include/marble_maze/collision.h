@@ -72,14 +72,16 @@ struct NearTiles {
   /// Where each layer of them (a z slot of the grid) begins in `tiles`, bottom up: they are
   /// gathered in the grid's order, layer by layer.
   std::vector<std::size_t> layers;
-  /// Whether they are one layer of the grid that fills its x-y rectangle, [lower, upper] (an
-  /// open floor): a centre above it and over the rectangle touches at most its top, which the
-  /// query then finds without looking at each tile.
-  bool one_full_layer = false;
-  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();       ///< grid frame, the tiles' bounding box
-  Index3 first = Index3::Zero(), last = Index3::Zero();  ///< the tiles' lowest and highest slots
-  /// The one of them under the centre of the last query the layer answered: the likeliest under
-  /// the next (the query checks that it is).
+  /// Whether their lowest layer, tiles[0, bottom_end), fills its x-y rectangle, [lower, upper]
+  /// (a floor, open or with walls on it): a centre above it and over the rectangle touches at
+  /// most the top of that layer's tile under it, which the query then finds without looking at
+  /// each of the layer's tiles (the layers above it are looked at tile by tile).
+  bool full_bottom_layer = false;
+  std::size_t bottom_end = 0;                            ///< where the lowest layer ends in tiles
+  Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();       ///< grid frame, its bounding box
+  Index3 first = Index3::Zero(), last = Index3::Zero();  ///< its tiles' lowest and highest slots
+  /// The one of its tiles under the centre of the last query the layer answered: the likeliest
+  /// under the next (the query checks that it is).
   std::size_t under = 0;
   std::uint64_t gathers = 0;  ///< how often they were gathered from the grid
 };

@@ -70,16 +70,19 @@ bool facesOpen(const Maze& maze, const Index3& t, const Box& box, const Vec3& c)
   return true;
 }
 
-/// Whether the near tiles are one full layer (NearTiles::one_full_layer), and their bounds.
-void markOneFullLayer(NearTiles* near) {
-  near->one_full_layer = false;
-  if (near->layers.size() != 1) return;
+/// Whether the near tiles' lowest layer fills its rectangle (NearTiles::full_bottom_layer), and
+/// its bounds.
+void markFullBottomLayer(NearTiles* near) {
+  near->full_bottom_layer = false;
+  if (near->tiles.empty()) return;
+  near->bottom_end = near->layers.size() > 1 ? near->layers[1] : near->tiles.size();
   Index3& first = near->first;
   Index3& last = near->last;
   first = last = near->tiles.front().index;
   near->lower = near->tiles.front().box.lower;
   near->upper = near->tiles.front().box.upper;
-  for (const NearTiles::Tile& t : near->tiles) {
+  for (std::size_t i = 0; i < near->bottom_end; ++i) {
+    const NearTiles::Tile& t = near->tiles[i];
     first = first.cwiseMin(t.index);
     last = last.cwiseMax(t.index);
     near->lower = near->lower.cwiseMin(t.box.lower);
@@ -89,16 +92,19 @@ void markOneFullLayer(NearTiles* near) {
   // grid's order.)
   const std::size_t slots = static_cast<std::size_t>(last.x() - first.x() + 1) *
                             static_cast<std::size_t>(last.y() - first.y() + 1);
-  near->one_full_layer = near->tiles.size() == slots;
+  near->full_bottom_layer = near->bottom_end == slots;
 }
 
-/// The contacts of grid point c with one full layer of near tiles, as looking at each tile gives
-/// them, bit for bit, when c lies above the layer and over its rectangle: the top face of the
-/// first tile in the grid's order under c, or none when c is out of reach of it. (Every other
-/// tile has a neighbour in the layer on the side towards c: its feature nearest c lies on a face
-/// shared with a solid tile, inside the union.) False, with nothing found, elsewhere.
-bool contactWithOneFullLayer(const Maze& maze, NearTiles* near, const Vec3& c, double radius,
-                             double reach, std::vector<Contact>* contacts) {
+/// The contacts of grid point c with the near tiles' full lowest layer, as looking at each of
+/// its tiles gives them, bit for bit, when c lies above the layer and over its rectangle: the
+/// top face of the first tile in the grid's order under c, or none when c is out of reach of
+/// it. (Every other tile has a neighbour in the layer on the side towards c: its feature nearest
+/// c lies on a face shared with a solid tile, inside the union.) False, with nothing found,
+/// elsewhere, and where a tile above covers that top face (c would be in it): the tiles are then
+/// looked at one by one. The layers above are left to the caller; they come after this one in
+/// the grid's order, as their contacts do.
+bool contactWithFullBottomLayer(const Maze& maze, NearTiles* near, const Vec3& c, double radius,
+                                double reach, std::vector<Contact>* contacts) {
   if (!(c.x() >= near->lower.x() && c.x() <= near->upper.x() && c.y() >= near->lower.y() &&
         c.y() <= near->upper.y() && c.z() > near->upper.z()))
     return false;
@@ -134,6 +140,8 @@ bool contactWithOneFullLayer(const Maze& maze, NearTiles* near, const Vec3& c, d
   if (!(c.x() >= box.lower.x() && c.x() <= box.upper.x() && c.y() >= box.lower.y() &&
         c.y() <= box.upper.y()))
     return false;
+  // (Alone, the layer has nothing above it near enough to cover the tile within reach of c.)
+  if (near->bottom_end < near->tiles.size() && !maze.faceOpen(tile->index, 2, 1)) return false;
   // (Made in place: built apart and copied in, its copy read what its stores had just written
   // in other pieces, and waited for them to reach the cache.)
   Contact& contact = contacts->emplace_back();
@@ -580,10 +588,15 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
         }
         kept.index = t;
       });
-      markOneFullLayer(near);
+      markFullBottomLayer(near);
     }
-    if (!(near->one_full_layer && contactWithOneFullLayer(maze, near, c, radius, reach, contacts)))
-      for (const NearTiles::Tile& tile : near->tiles) contactWith(tile.index, tile.box);
+    const std::size_t looked_at =
+        near->full_bottom_layer &&
+                contactWithFullBottomLayer(maze, near, c, radius, reach, contacts)
+            ? near->bottom_end
+            : 0;
+    for (std::size_t i = looked_at; i < near->tiles.size(); ++i)
+      contactWith(near->tiles[i].index, near->tiles[i].box);
   }
   for (Contact& contact : *contacts) {
     contact.grid_normal = contact.normal;

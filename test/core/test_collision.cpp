@@ -225,12 +225,15 @@ TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
   EXPECT_LT(kept.gathers, 15000u);  // kept for some queries: 0 would test nothing
 }
 
-TEST(FindContacts, AFullLayerOfNearTilesGivesTheContactsOfAFreshLook) {
-  // Over a floor of many tiles the near tiles are often one full layer, and the query answers
-  // from the layer's top without looking at each tile: it must find what a fresh look finds, bit
-  // for bit, on an open floor, beside a hole in it, over its edge where the board ends (a floor
-  // with no walls round it, the marble also beyond it), resting on it, in flight, in it.
+TEST(FindContacts, AFullBottomLayerOfNearTilesGivesTheContactsOfAFreshLook) {
+  // Over a floor of many tiles the near tiles' lowest layer is often full, and the query answers
+  // for it from its top without looking at each of its tiles: it must find what a fresh look
+  // finds, bit for bit, on an open floor, beside a hole in it, over its edge where the board
+  // ends (a floor with no walls round it, the marble also beyond it), among walls standing on
+  // it (the marble beside them, on them and in them, where a wall covers the floor under it),
+  // resting on it, in flight, in it.
   Maze walled = test::generatedMaze(6, false);
+  Maze mazed = test::generatedMaze(6);
   Maze holed = walled;
   holed.setSolid({5, 5, 0}, false);
   Maze bare(AxisSlots(0.005, 0.0221, 9), AxisSlots(0.005, 0.02325, 9), AxisSlots(0.005, 0.012, 2));
@@ -241,7 +244,7 @@ TEST(FindContacts, AFullLayerOfNearTilesGivesTheContactsOfAFreshLook) {
   const auto uniform = [&](double lo, double hi) {
     return lo + (hi - lo) * std::generate_canonical<double, 53>(random);
   };
-  for (const Maze* maze : {&walled, &holed, &bare}) {
+  for (const Maze* maze : {&walled, &holed, &bare, &mazed}) {
     GridFrame frame;
     frame.rotation = Eigen::AngleAxisd(0.05, Vec3(2, -1, 0).normalized()).toRotationMatrix();
     frame.grid_pivot = maze->pivot();
@@ -250,7 +253,7 @@ TEST(FindContacts, AFullLayerOfNearTilesGivesTheContactsOfAFreshLook) {
     kept.slack = 0.5 * r;
     const double top = maze->floorTop();
     Vec3 grid(maze->axis(0).centre(5), maze->axis(1).centre(5), top + r);
-    int one_layer = 0, contacts_seen = 0;
+    int full_bottom = 0, with_walls = 0, contacts_seen = 0;
     for (int n = 0; n < 20000; ++n) {
       const Vec3 move(uniform(-2e-3, 2e-3), uniform(-2e-3, 2e-3), uniform(-1e-3, 1e-3));
       grid = (grid + move).cwiseMax(Vec3(-2 * r, -2 * r, top - 0.5 * r));
@@ -271,17 +274,21 @@ TEST(FindContacts, AFullLayerOfNearTilesGivesTheContactsOfAFreshLook) {
       std::vector<Contact> with_kept, fresh;
       findContacts(*maze, frame, centre, r, margin, &with_kept, &kept);
       findContacts(*maze, frame, centre, r, margin, &fresh);
-      one_layer += kept.one_full_layer;
+      full_bottom += kept.full_bottom_layer;
+      with_walls += kept.full_bottom_layer && kept.layers.size() > 1;
       ASSERT_TRUE(sameContacts(with_kept, fresh)) << "at " << grid.transpose();
       contacts_seen += static_cast<int>(fresh.size());
     }
-    // A fifth of the queries or more answered from the layer (near the walls, the hole and the
-    // edge the tiles are not one full layer), and half of them touching the floor.
-    EXPECT_GT(one_layer, 4000) << "maze "
-                               << (maze == &walled  ? "walled"
-                                   : maze == &holed ? "holed"
-                                                    : "bare");
+    // A fifth of the queries or more with a full bottom layer (beside the hole and over the
+    // board's edge it is not), and half of them touching the floor.
+    EXPECT_GT(full_bottom, 4000) << "maze "
+                                 << (maze == &walled  ? "walled"
+                                     : maze == &holed ? "holed"
+                                     : maze == &bare  ? "bare"
+                                                      : "mazed");
     EXPECT_GT(contacts_seen, 10000);
+    // Among the walls, most with walls near: the layer above the floor looked at tile by tile.
+    if (maze == &mazed) EXPECT_GT(with_walls, 10000);
   }
 }
 

@@ -58,9 +58,9 @@ class Maze {
   const std::vector<Cell>& goals() const { return goals_; }
   void addGoal(const Cell& c);
   bool isGoal(const Cell& c) const;
-  /// False where grid point p lies outside every goal's cell by more than two slots, and so is
-  /// over none (the slots' formula rounds a point's column by far less): the finish check then
-  /// looks up no column.
+  /// False where grid point p lies outside the rectangle round every goal's cell grown by a
+  /// period of slots each way, and so is over no goal (the slots' formula rounds a point's
+  /// column by far less); true over every goal: the finish check looks up no column elsewhere.
   bool nearAGoal(const Vec3& p) const {
     return p.x() >= goals_lower_[0] && p.x() <= goals_upper_[0] && p.y() >= goals_lower_[1] &&
            p.y() <= goals_upper_[1];
@@ -94,7 +94,7 @@ class Maze {
   std::vector<std::uint8_t> tiles_;
   Cell start_;
   std::vector<Cell> goals_;
-  // The goals' cells' x-y bounds, two slots wider each way (no goal: empty bounds).
+  // That rectangle's x-y bounds (no goal: empty bounds).
   static constexpr double kNoBound = std::numeric_limits<double>::infinity();
   double goals_lower_[2] = {kNoBound, kNoBound};
   double goals_upper_[2] = {-kNoBound, -kNoBound};

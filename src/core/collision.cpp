@@ -100,9 +100,9 @@ void markFullBottomLayer(NearTiles* near) {
 /// top face of the first tile in the grid's order under c, or none when c is out of reach of
 /// it. (Every other tile has a neighbour in the layer on the side towards c: its feature nearest
 /// c lies on a face shared with a solid tile, inside the union.) False, with nothing found,
-/// elsewhere, and where a tile above covers that top face (c would be in it): the tiles are then
-/// looked at one by one. The layers above are left to the caller; they come after this one in
-/// the grid's order, as their contacts do.
+/// elsewhere, and where a tile above covers that top face (c is in it, or above a tile thinner
+/// than the reach): the tiles are then looked at one by one. The layers above are left to the
+/// caller; they come after this one in the grid's order, as their contacts do.
 bool contactWithFullBottomLayer(const Maze& maze, NearTiles* near, const Vec3& c, double radius,
                                 double reach, std::vector<Contact>* contacts) {
   if (!(c.x() >= near->lower.x() && c.x() <= near->upper.x() && c.y() >= near->lower.y() &&

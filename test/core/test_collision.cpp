@@ -230,10 +230,15 @@ TEST(FindContacts, AFullBottomLayerOfNearTilesGivesTheContactsOfAFreshLook) {
   // for it from its top without looking at each of its tiles: it must find what a fresh look
   // finds, bit for bit, on an open floor, beside a hole in it, over its edge where the board
   // ends (a floor with no walls round it, the marble also beyond it), among walls standing on
-  // it (the marble beside them, on them and in them, where a wall covers the floor under it),
-  // resting on it, in flight, in it.
+  // it (the marble beside them and in them, where a wall covers the floor under it), among walls
+  // 3 mm high (the marble over them too, in reach of their tops and of the floor, the deeper of
+  // the two upward contacts kept), resting on it, in flight, in it.
   Maze walled = test::generatedMaze(6, false);
   Maze mazed = test::generatedMaze(6);
+  Maze low(mazed.axis(0), mazed.axis(1), AxisSlots(0.005, 0.003, 2));
+  for (int j = 0; j < mazed.size().y(); ++j)
+    for (int i = 0; i < mazed.size().x(); ++i)
+      for (int k = 0; k < 2; ++k) low.setSolid({i, j, k}, mazed.solid({i, j, k}));
   Maze holed = walled;
   holed.setSolid({5, 5, 0}, false);
   Maze bare(AxisSlots(0.005, 0.0221, 9), AxisSlots(0.005, 0.02325, 9), AxisSlots(0.005, 0.012, 2));
@@ -244,7 +249,7 @@ TEST(FindContacts, AFullBottomLayerOfNearTilesGivesTheContactsOfAFreshLook) {
   const auto uniform = [&](double lo, double hi) {
     return lo + (hi - lo) * std::generate_canonical<double, 53>(random);
   };
-  for (const Maze* maze : {&walled, &holed, &bare, &mazed}) {
+  for (const Maze* maze : {&walled, &holed, &bare, &mazed, &low}) {
     GridFrame frame;
     frame.rotation = Eigen::AngleAxisd(0.05, Vec3(2, -1, 0).normalized()).toRotationMatrix();
     frame.grid_pivot = maze->pivot();
@@ -285,10 +290,11 @@ TEST(FindContacts, AFullBottomLayerOfNearTilesGivesTheContactsOfAFreshLook) {
                                  << (maze == &walled  ? "walled"
                                      : maze == &holed ? "holed"
                                      : maze == &bare  ? "bare"
-                                                      : "mazed");
+                                     : maze == &mazed ? "mazed"
+                                                      : "low");
     EXPECT_GT(contacts_seen, 10000);
     // Among the walls, most with walls near: the layer above the floor looked at tile by tile.
-    if (maze == &mazed) EXPECT_GT(with_walls, 10000);
+    if (maze == &mazed || maze == &low) EXPECT_GT(with_walls, 10000);
   }
 }
 

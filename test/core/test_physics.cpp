@@ -640,7 +640,7 @@ TEST(Finish, ReachingTheGoalIsReported) {
 TEST(Finish, EveryPointOverAGoalIsNearOneAndPointsFarFromThemAreNot) {
   // The finish check looks up a column only near a goal (Maze::nearAGoal): every point whose
   // column is a goal must be near one, on the goal cells' seams too (a boundary belongs to the
-  // upper slot), and points well outside the goals' rectangle grown by two slots are not.
+  // upper slot), and points well outside the goals' rectangle grown by a period are not.
   const AxisSlots x(0.005, 0.0221, 21), y(0.008, 0.04, 15), z(0.005, 0.012, 2);
   Maze maze = test::floorMaze(x, y, z);
   EXPECT_FALSE(maze.nearAGoal(Vec3(x.centre(7), y.centre(5), 0)));  // no goal yet: near none
@@ -662,8 +662,9 @@ TEST(Finish, EveryPointOverAGoalIsNearOneAndPointsFarFromThemAreNot) {
     const Maze::Cell cell = maze.cellAt(p);
     const bool over = maze.isGoal(cell), near = maze.nearAGoal(p);
     if (over) ASSERT_TRUE(near) << "at " << p.transpose();
-    // (Over a column beyond the rectangle round both goals grown by two slots, and not on its
-    // boundary, which a column's rounding may put either side: the check need not be tighter.)
+    // (Over a column beyond the rectangle round both goals grown by a period (two slots), not
+    // on its boundary, which a column's rounding may put either side: the check need not be
+    // tighter.)
     const bool far = cell.i < 7 - 3 || cell.i > 13 + 3 || cell.j < 5 - 3 || cell.j > 9 + 3;
     if (far) EXPECT_FALSE(near) << "at " << p.transpose();
     over_goals += over;

@@ -590,12 +590,13 @@ void findContacts(const Maze& maze, const GridFrame& frame, const Vec3& centre, 
       });
       markFullBottomLayer(near);
     }
-    const std::size_t looked_at =
+    // (The lowest layer's tiles are answered for when its top gives their contacts.)
+    const std::size_t answered =
         near->full_bottom_layer &&
                 contactWithFullBottomLayer(maze, near, c, radius, reach, contacts)
             ? near->bottom_end
             : 0;
-    for (std::size_t i = looked_at; i < near->tiles.size(); ++i)
+    for (std::size_t i = answered; i < near->tiles.size(); ++i)
       contactWith(near->tiles[i].index, near->tiles[i].box);
   }
   for (Contact& contact : *contacts) {

@@ -83,6 +83,26 @@ TEST(TiltSchedule, LookedUpFromARowItIsTheProgrammesValueToTheBitInAnyOrder) {
   }
 }
 
+TEST(TiltSchedule, RowsAreReadAsSpreadsheetsWriteThem) {
+  // Windows line ends, spaces around the numbers, a comma ending a row, no newline at the end.
+  const TiltSchedule s = TiltSchedule::parse(
+      "t,roll,pitch\r\n0, 0.25 ,-0.125\r\n\r\n  \n2,0.5,0.75,\n4,-0.5,0.0625", "prog.csv");
+  EXPECT_EQ(s.duration(), 4.0);
+  EXPECT_EQ(s.at(0).roll, 0.25);
+  EXPECT_EQ(s.at(0).pitch, -0.125);
+  EXPECT_EQ(s.at(2).roll, 0.5);
+  EXPECT_EQ(s.at(2).pitch, 0.75);
+  EXPECT_EQ(s.at(4).roll, -0.5);
+  EXPECT_EQ(s.at(4).pitch, 0.0625);
+  // Each field is one number: an empty one, or a fourth, is refused, naming the line.
+  EXPECT_EQ(errorOf("0,0,0\n1,,0\n"),
+            "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got '1,,0'");
+  EXPECT_EQ(errorOf("0,0,0\r\n1,0,0,0\r\n"),
+            "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got '1,0,0,0'");
+  EXPECT_EQ(errorOf("0,0,0\n,1,0\n"),
+            "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got ',1,0'");
+}
+
 TEST(TiltSchedule, EachWrongFileIsRefusedNamingItsLine) {
   EXPECT_EQ(errorOf("0,0.1,0\n1,x,0\n"),
             "prog.csv:2: expected three numbers t,roll,pitch (s, "

@@ -94,9 +94,10 @@ TEST(TiltSchedule, RowsAreReadAsSpreadsheetsWriteThem) {
   EXPECT_EQ(s.at(2).pitch, 0.75);
   EXPECT_EQ(s.at(4).roll, -0.5);
   EXPECT_EQ(s.at(4).pitch, 0.0625);
-  // Each field is one number: an empty one, or a fourth, is refused, naming the line.
-  EXPECT_EQ(errorOf("0,0,0\n1,,0\n"),
-            "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got '1,,0'");
+  // Each field is one number: an empty field, or a fourth number, is refused (a comma ending a
+  // row is no field), naming its line, counted with the blank and comment lines before it.
+  EXPECT_EQ(errorOf("0,0,0\r\n\r\n# c\n  \n1,,0\n"),
+            "prog.csv:5: expected three numbers t,roll,pitch (s, rad, rad), got '1,,0'");
   EXPECT_EQ(errorOf("0,0,0\r\n1,0,0,0\r\n"),
             "prog.csv:2: expected three numbers t,roll,pitch (s, rad, rad), got '1,0,0,0'");
   EXPECT_EQ(errorOf("0,0,0\n,1,0\n"),

@@ -8,13 +8,69 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "marble_maze/simulation.h"
-#include "step_loop.h"
+#include "bench_mazes.h"
 
 namespace mm = marble_maze;
+
+namespace marble_maze {
+namespace bench {
+
+// The cases' scenes and how often they start over.
+constexpr int kFreeFlightCells = 10;             ///< the maze far under the falling marble
+constexpr std::size_t kFreeFlightRestart = 400;  ///< steps: 0.4 s of flight at a time
+constexpr int kOpenFloorCells = 60;              ///< an open floor of 60 x 60 cells, walled round
+constexpr std::size_t kOpenFloorRestart = 1000;  ///< steps: a second, too short to reach a wall
+
+/// The tilt programme, a step of `step` seconds at a time: a circling tilt of 0.1 rad, one turn
+/// in about 3 s, which keeps the marble rolling into walls; it repeats after 3142 steps.
+inline std::vector<std::pair<double, double>> circlingTilts(double step) {
+  std::vector<std::pair<double, double>> tilts(3142);
+  for (std::size_t i = 0; i < tilts.size(); ++i) {
+    const double t = static_cast<double>(i) * step;
+    tilts[i] = {0.1 * std::sin(2.0 * t), 0.1 * std::cos(2.0 * t)};
+  }
+  return tilts;
+}
+
+/// The baseline, the step's fixed part: the scene's marble starts 1 m above the board's pivot,
+/// far from every tile.
+inline Scene inFreeFlight(Scene scene) {
+  scene.params.has_start_position = true;
+  scene.params.start_position = Vec3(0, 0, 1.0);
+  return scene;
+}
+
+/// The generated mazes' sizes, in cells a side, from 10 to 1000 (295 to 500 among them, where the
+/// rounding of grid coordinates would grow with the maze if it were taken about its corner).
+inline void mazeSizes(benchmark::internal::Benchmark* b) {
+  b->ArgName("cells");
+  for (int cells : {10, 100, 200, 295, 299, 300, 400, 500, 1000}) b->Arg(cells);
+}
+
+/// Steps the simulation under the circling tilt, and starts it over when it finishes or every
+/// `restart_every` steps (0: never). The tilts are worked out beforehand so that only the step
+/// is timed. Returns the steps taken.
+inline std::size_t stepUnderCirclingTilt(benchmark::State& state, Simulation* sim,
+                                         std::size_t restart_every = 0) {
+  const std::vector<std::pair<double, double>> tilts = circlingTilts(sim->params().step);
+  std::size_t n = 0;
+  for (auto _ : state) {
+    const auto& [roll, pitch] = tilts[n++ % tilts.size()];
+    sim->setTargetTilt(roll, pitch);
+    sim->step();
+    if (sim->marble().phase != MarblePhase::Free || (restart_every && n % restart_every == 0))
+      sim->reset();
+  }
+  return n;
+}
+
+}  // namespace bench
+}  // namespace marble_maze
 
 namespace {
 
@@ -25,7 +81,7 @@ const mm::Scene& sceneOfSize(int cells) {
   if (it == scenes.end())
     it = scenes
              .emplace(cells,
-                      mm::Scene{mm::test::generatedMaze(std::abs(cells), cells > 0), mm::Params()})
+                      mm::Scene{mm::bench::generatedMaze(std::abs(cells), cells > 0), mm::Params()})
              .first;
   return it->second;
 }
@@ -157,7 +213,6 @@ class RatioReporter : public benchmark::ConsoleReporter {
       std::printf("%-40s %-26s %10.1f %10.2f %12.2f\n", row.name.c_str(), row.label.c_str(), row.ns,
                   row.ns / base, flight > 0 ? row.ns / flight : 0.0);
     }
-    printTargets();
   }
 
  private:
@@ -165,44 +220,6 @@ class RatioReporter : public benchmark::ConsoleReporter {
     std::string group, name, label;
     double ns;
   };
-
-  /// Issue 11's targets, for the cases of this run that they name: the most ns a step of a
-  /// group's costliest case and, for the mazes, of their costliest size against the smallest.
-  void printTargets() const {
-    struct Target {
-      const char* what;
-      const char* group;
-      double most_ns;
-      double most_ratio;  // the costliest case against the group's first, the smallest (0: none)
-    };
-    const Target targets[] = {
-        {"free flight", "BM_FreeFlight", 100, 0},
-        {"rolling on an open floor", "BM_OpenFloor", 100, 0},
-        {"generated mazes, the costliest size", "BM_StepByMazeSize", 150, 1.15}};
-    const auto line = [](const std::string& what, double value, double most) {
-      char verdict[48] = "met";
-      if (value > most) std::snprintf(verdict, sizeof verdict, "%.2f x the target", value / most);
-      std::printf("%-67s %10.2f %10.2f  %s\n", what.c_str(), value, most, verdict);
-    };
-    bool header = false;
-    for (const Target& target : targets) {
-      double first = 0, costliest = 0;
-      int cases = 0;
-      for (const Row& row : rows_)
-        if (row.group == target.group) {
-          if (cases++ == 0) first = row.ns;
-          costliest = std::max(costliest, row.ns);
-        }
-      if (costliest == 0) continue;  // not in this run
-      if (!header)
-        std::printf("\n%-67s %10s %10s  %s\n", "issue 11's targets", "this run", "target",
-                    "verdict");
-      header = true;
-      line(std::string(target.what) + ", ns a step", costliest, target.most_ns);
-      if (target.most_ratio > 0 && cases > 1)  // (one size alone says nothing of a cliff)
-        line(std::string(target.what) + " / the smallest", costliest / first, target.most_ratio);
-    }
-  }
 
   std::vector<Row> rows_;
 };

@@ -6,6 +6,7 @@
 # count over its calls (the benchmark's own loop and the scenes' building left out), with each
 # case's ratio to free flight. The same build gives the same counts.
 set -euo pipefail
+# shellcheck source=scripts/workspace.sh
 . "$(dirname "$0")/workspace.sh"
 filter=${1:-'FreeFlight|OpenFloor|MazeSize'}
 bench=$WS/devel/lib/marble_maze/marble_maze_bench

@@ -4,6 +4,7 @@
 # summary when the marble reaches the goal, and the exit status says whether it did.
 set -euo pipefail
 export PATH="/usr/bin:$PATH"
+# shellcheck source=scripts/workspace.sh
 . "$(dirname "$0")/workspace.sh"
 use_workspace
 export ROS_HOME="${ROS_HOME:-$WS/ros_home}"

@@ -1,20 +1,20 @@
 #!/usr/bin/env bash
 # The fuzzers of the maze-file parser, of the runner's command line and of a session's restore
-# from a bag's snapshot (libFuzzer with AddressSanitizer and UndefinedBehaviorSanitizer, Debian's
-# clang), built beside the workspace (WS/fuzz):
+# from a bag's snapshot (libFuzzer on the sanitized core, scripts/sanitized_build.sh):
 #   bash scripts/fuzz.sh [SECONDS [RESULTS_DIR]]
 # replays every input of fuzz/regressions/ (each a crash or hang once found), then runs each
-# fuzzer for SECONDS of wall time (default 30; the three side by side) from the checked-in corpus
-# (and mazes/), new inputs going to a scratch corpus in WS/fuzz. A finding stops the run: its
-# input is written to WS/fuzz/findings/, to be fixed and then added to fuzz/regressions/ for good.
-# Prints each fuzzer's executions and, given RESULTS_DIR, writes a JUnit file there with a case per
-# fuzzer (for make test's count).
+# fuzzer for SECONDS of wall time (default 10; the three side by side) from the checked-in corpus
+# (and mazes/), new inputs going to a scratch corpus in WS/sanitize. A finding stops the run: its
+# input is written to WS/sanitize/findings/, to be fixed and then added to fuzz/regressions/ for
+# good. Prints each fuzzer's executions and, given RESULTS_DIR, writes a JUnit file there with a
+# case per fuzzer.
 set -uo pipefail
 export PATH="/usr/bin:$PATH"
+# shellcheck source=scripts/workspace.sh
 . "$(dirname "$0")/workspace.sh"
-seconds=${1:-30}
+seconds=${1:-10}
 results=${2:-}
-build="$WS/fuzz"
+build="$WS/sanitize"
 record() {  # record NAME FAILURE-MESSAGE-OR-EMPTY: a JUnit case, into the fuzzer's own file
   if [ -z "$2" ]; then
     echo "<testcase classname=\"fuzz\" name=\"$1\"/>" >> "$cases_file"
@@ -24,13 +24,7 @@ record() {  # record NAME FAILURE-MESSAGE-OR-EMPTY: a JUnit case, into the fuzze
   fi
 }
 mkdir -p "$build/findings"
-bash "$repo/scripts/install_deps.sh" clang libclang-rt-14-dev >/dev/null
-if ! { cmake -S "$repo/fuzz" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug &&
-       cmake --build "$build" -j2; } > "$build/build.log" 2>&1; then
-  tail -n 20 "$build/build.log"
-  echo "the fuzzers' build failed; the whole log is $build/build.log"
-  exit 1
-fi
+bash "$repo/scripts/sanitized_build.sh" maze_fuzzer args_fuzzer snapshot_fuzzer || exit 1
 fuzz() {  # fuzz NAME: its regressions, then SECONDS of fuzzing; exits non-zero on a failure
   local fuzzer=$1 cases_file="$build/$1.cases"  # (record writes to it)
   : > "$cases_file"
@@ -56,7 +50,7 @@ fuzz() {  # fuzz NAME: its regressions, then SECONDS of fuzzing; exits non-zero 
   result=$?
   runs=$(grep -o "stat::number_of_executed_units: *[0-9]*" "$build/$fuzzer.log" | grep -o "[0-9]*$")
   echo "$fuzzer fuzzer: ${runs:-0} executions in $seconds s," \
-    "$(ls "$scratch" | wc -l) inputs in its corpus"
+    "$(find "$scratch" -type f | wc -l) inputs in its corpus"
   if [ $result -ne 0 ]; then
     grep -E "ERROR|runtime error|SUMMARY|Test unit written" "$build/$fuzzer.log" | head -n 20
     echo "$fuzzer fuzzer: a finding (log: $build/$fuzzer.log; input in $build/findings/)"

@@ -13,7 +13,8 @@ packages=("$@")
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev librosbag-dev libtopic-tools-dev
   python3-rospy python3-tf2-ros python3-std-srvs python3-visualization-msgs python3-geometry-msgs
   python3-dynamic-reconfigure python3-nav-msgs python3-diagnostic-msgs python3-yaml
-  rosbash rviz valgrind python3-capstone
+  rosbash rviz valgrind python3-matplotlib clang libclang-rt-14-dev
+  clang-tidy flake8 shellcheck
 )
 
 missing=()

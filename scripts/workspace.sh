@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by the other scripts: WS is the catkin workspace that `make` builds. It lies beside this
 # clone, not in it, because rosrun searches the whole package directory for executables and
 # would find the workspace's copies too. MARBLE_MAZE_WS overrides it.

@@ -3,7 +3,6 @@
 
 #include <string>
 
-#include "generated_maze.h"
 #include "marble_maze/maze_file.h"
 
 namespace marble_maze {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "bench_mazes.h"
 #include "marble_maze/collision.h"
 #include "scenes.h"
 
@@ -191,7 +192,7 @@ TEST(FindContacts, KeptNearTilesGiveTheContactsOfAFreshLook) {
   // walls and sometimes into them, on a tilted board: the contacts found with the near tiles kept
   // from earlier queries (gathered anew only now and then) are those of a query that looks at the
   // grid afresh, bit for bit, and the kept tiles hold every solid tile the query needs.
-  const Maze maze = test::generatedMaze(10);
+  const Maze maze = bench::generatedMaze(10);
   const double r = 0.006, margin = 1e-7;
   GridFrame frame;
   frame.rotation = Eigen::AngleAxisd(0.1, Vec3(1, 2, 0).normalized()).toRotationMatrix();
@@ -233,8 +234,8 @@ TEST(FindContacts, AFullBottomLayerOfNearTilesGivesTheContactsOfAFreshLook) {
   // it (the marble beside them and in them, where a wall covers the floor under it), among walls
   // 3 mm high (the marble over them too, in reach of their tops and of the floor, the deeper of
   // the two upward contacts kept), resting on it, in flight, in it.
-  Maze walled = test::generatedMaze(6, false);
-  Maze mazed = test::generatedMaze(6);
+  Maze walled = bench::generatedMaze(6, false);
+  Maze mazed = bench::generatedMaze(6);
   Maze low(mazed.axis(0), mazed.axis(1), AxisSlots(0.005, 0.003, 2));
   for (int j = 0; j < mazed.size().y(); ++j)
     for (int i = 0; i < mazed.size().x(); ++i)
@@ -406,7 +407,7 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
   // face of a wall they touch, and some start up to a skin away from where the near tiles were
   // gathered: where the near tiles say a path meets nothing, the walk of the grid finds no
   // impact either. Most short paths are clear; some meet a wall, so both answers are exercised.
-  const Maze maze = test::generatedMaze(10);
+  const Maze maze = bench::generatedMaze(10);
   const double r = 0.006, floor_top = maze.floorTop();
   std::mt19937 random(7);
   const auto uniform = [&](double lo, double hi) {

@@ -154,8 +154,7 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--duration", "--duration: needs a value"},
       {"--set start_velocity=1e158,0,0", "start_velocity: 1e+158 m/s is more than"},
       {"--set step=0", "step: 0 is out of range"},
-      // Issue 12: messages that said the wrong thing, a cast that was undefined, a marble that
-      // could not start where it was put.
+      // Messages that name the problem; settings the marble cannot start in.
       {"--set step=1e-400", "step: '1e-400' underflows"},
       {"--set gravity=1e400", "gravity: '1e400' overflows"},
       {"--every 1e12", "--every: expected a whole number from 1 to 2147483647, got '1e12'"},

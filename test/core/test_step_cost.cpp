@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "bench_mazes.h"
 #include "marble_maze/simulation.h"
 #include "scenes.h"
 
@@ -14,7 +15,7 @@ namespace {
 /// Tiles swept per step over `steps` steps in a generated maze of `cells` x `cells`: the marble
 /// at rest on a level board, or rolling under the circling tilt of make bench.
 double tilesPerStep(int cells, bool circling, int steps = 2000) {
-  Simulation sim(Scene{test::generatedMaze(cells), Params()});
+  Simulation sim(Scene{bench::generatedMaze(cells), Params()});
   for (int n = 0; n < steps; ++n) {
     const double t = n * sim.params().step;
     if (circling) sim.setTargetTilt(0.1 * std::sin(2.0 * t), 0.1 * std::cos(2.0 * t));
@@ -42,9 +43,9 @@ TEST(StepCost, ThePairSolverTakesOneNewtonStepForAMarbleRollingAlongAWall) {
   // at once, one sticking and the other slipping, in a third of its steps. The pair solver
   // starts Newton's method from the root of its equation without the slip across the two
   // surfaces, which is the root when they move as one board, and takes one step a solve (here
-  // 2.45 from the root with gamma = 0, before stop 34; 2.6 in make bench's maze of 100 cells).
+  // 2.6 in make bench's maze of 100 cells).
   // A count: what make bench's newton/pair shows.
-  Simulation sim(Scene{test::generatedMaze(10), Params()});
+  Simulation sim(Scene{bench::generatedMaze(10), Params()});
   for (int n = 0; n < 4000; ++n) {
     const double t = n * sim.params().step;
     sim.setTargetTilt(0.1 * std::sin(2.0 * t), 0.1 * std::cos(2.0 * t));
@@ -77,7 +78,7 @@ TEST(StepCost, AMarbleRollingOnATurningFloorStaysOnIt) {
       setParam(p, "preset", preset);
       p.has_start_position = true;
       p.start_position = Vec3(0.15, 0.1, p.marble_radius);
-      Simulation sim(Scene{test::generatedMaze(60, false), p});
+      Simulation sim(Scene{bench::generatedMaze(60, false), p});
       while (sim.time() < 10.0) {
         const double t = sim.time();
         sim.setTargetTilt(0.1 * std::sin(tilt.roll_rate * t), 0.1 * std::cos(tilt.pitch_rate * t));

@@ -104,7 +104,7 @@ class BadParamTest(unittest.TestCase):
         self.check_refused("bp_six", ["_integrator:=leapfrog"], "integrator", "leapfrog",
                            "velocity_verlet", "rk4")
 
-    # The settings that cannot be simulated (issue 10), refused by the node as by the runner.
+    # The settings that cannot be simulated, refused by the node as by the runner.
     def test_zero_step(self):
         self.check_refused("bp_seven", ["_step:=0.0"], "step")
 
@@ -122,7 +122,7 @@ class BadParamTest(unittest.TestCase):
         finally:
             os.unlink(maze.name)
 
-    # Issue 12: frames that would break tf, and a marble that cannot start where it is put.
+    # Frames that would break tf, and a marble that cannot start where it is put.
     def test_a_board_frame_named_as_the_world_frame(self):
         self.check_refused("bp_eleven", ["_board_frame:=world"], "board_frame", "world_frame")
 
@@ -165,7 +165,7 @@ class BadParamTest(unittest.TestCase):
     def test_a_flag_of_the_wrong_type(self):
         self.check_refused("bp_eighteen", ["_clock:=sometimes"], "clock", "true or false")
 
-    def test_the_replay_the_autopilot_and_the_tilt_program_refuse_a_parameter_of_the_wrong_type(self):
+    def test_the_replay_the_autopilot_and_the_tilt_program_refuse_a_parameter_of_a_wrong_type(self):
         # (They took a word for a number, or a number for a flag, as their default, silently.)
         self.check_refused("bp_thirty", ["_bag:=/nonexistent.bag", "_rate:=fast"], "rate",
                            "expected a number", node="replay")

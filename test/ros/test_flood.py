@@ -3,8 +3,8 @@
 commands at 10 kHz for 10 s, each stamped now and numbered in its roll. Checks that
   - marble_state keeps coming at 50 Hz of ROS time (+-15 %): rostest's own hztest, run during the
     flood (rostest runs a launch file's tests one after another, so the test starts it), and a
-    count here; in each second of it, half the states arrive within 0.1 s of their stamps: the node keeps its
-    step rate (a median, which this process's own hiccups do not move);
+    count here; in each second of it, half the states arrive within 0.1 s of their stamps: the
+    node keeps its step rate (a median, which this process's own hiccups do not move);
   - the node's resident memory (VmRSS) during and after the flood stays within 30 MB of what it
     was before: the queues are bounded (a tilt subscription of 100, a command queue of 10,000);
   - the commands it applies (the TILT inputs it publishes on `inputs`, numbered by the flood)
@@ -94,8 +94,8 @@ class FloodTest(unittest.TestCase):
         with lock:
             flood_states = [s for s in states if begin + 1 <= s[0] <= end - 1]
             heard = list(inputs)
-        summary = ("flood: %d commands sent; %d applied inputs heard; RSS before %d kB, most during "
-                   "%d kB, after %d kB; %d states in %.1f s"
+        summary = ("flood: %d commands sent; %d applied inputs heard; RSS before %d kB, most "
+                   "during %d kB, after %d kB; %d states in %.1f s"
                    % (sent, len(heard), before, max(during), after, len(flood_states),
                       end - begin - 2))
         print(summary)

@@ -8,6 +8,7 @@ it stands, at the same stamp; paused, a command waits for the next step taken; b
 brings the marble within 5 mm of its point, printing the steps per second of wall time it
 reaches."""
 import importlib.util
+import math
 import os
 import threading
 import time
@@ -101,7 +102,10 @@ class LockstepTest(unittest.TestCase):
         # A NaN tilt is refused; the agent waiting for its answer gets the state unchanged, at
         # the stamp of the one before (it got nothing, and its loop stopped at its timeout).
         states, arrived, tilt = self.connect()
-        command = lambda roll, pitch: lambda: tilt.publish(BoardTilt(roll=roll, pitch=pitch))
+
+        def command(roll, pitch):
+            return lambda: tilt.publish(BoardTilt(roll=roll, pitch=pitch))
+
         last = self.answer_to(states, arrived, command(0.0, 0.03), "no state after a command")
         answer = self.answer_to(states, arrived, command(float("nan"), 0.0),
                                 "no answer to a refused command")
@@ -164,7 +168,7 @@ class LockstepTest(unittest.TestCase):
         spec.loader.exec_module(agent)
         last, rate = agent.run(x=-0.04, y=0.02, commands=400)  # 8 s of simulated time
         print("example agent: %.0f periods (x 20 steps) a second of wall time" % rate)
-        off = ((last.position_in_board.x + 0.04) ** 2 + (last.position_in_board.y - 0.02) ** 2) ** 0.5
+        off = math.hypot(last.position_in_board.x + 0.04, last.position_in_board.y - 0.02)
         self.assertLess(off, 0.005)
 
 

@@ -75,7 +75,8 @@ class Recorder:
 
     def _on_msg(self, msg):
         with self.lock:
-            if self.check_stamps and self.msgs and not msg.header.stamp > self.msgs[-1].header.stamp:
+            if (self.check_stamps and self.msgs
+                    and not msg.header.stamp > self.msgs[-1].header.stamp):
                 self.stamp_errors.append((self.msgs[-1].header.stamp.to_sec(),
                                           msg.header.stamp.to_sec()))
             self.msgs.append(msg)
@@ -351,7 +352,8 @@ class NodeApiTest(unittest.TestCase):
                             "after reset: %s, start %s" % (xyz(m.position_in_board), self.start))
             self.assertLess(distance(xyz(m.velocity), (0, 0, 0)), 1e-6)
             self.assertEqual((m.roll, m.pitch), (0.0, 0.0))
-        self.assertFalse(self.states.stamp_errors, "marble_state stamps not increasing (prev, next)")
+        self.assertFalse(self.states.stamp_errors,
+                         "marble_state stamps not increasing (prev, next)")
 
     def test_tilt_limit(self):
         """A tilt beyond tilt_limit is clamped to it, reached at no more than tilt_rate_limit;
@@ -469,7 +471,8 @@ class NodeApiTest(unittest.TestCase):
                                  xyz(paused.position_in_board)), 0.002)
         self.roll_until(lambda m: m.position_in_board.x - paused.position_in_board.x > 0.002,
                         "the marble rolls on after resume")
-        self.assertFalse(self.states.stamp_errors, "marble_state stamps not increasing (prev, next)")
+        self.assertFalse(self.states.stamp_errors,
+                         "marble_state stamps not increasing (prev, next)")
 
 
 if __name__ == "__main__":

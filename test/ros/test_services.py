@@ -7,8 +7,9 @@
     step calls gives bit-identical states;
   - place_marble: refused inside a tile and off the board, the marble staying where it was;
   - load_maze: refused for a missing and a malformed file (file:line:col), and a file of
-    another kind quoted only in part, the old maze still running; a built-in maze loads, `maze` and the markers follow; a maze with 5 ms steps runs
-    at real time, one with steps longer than ~publish_rate allows is refused;
+    another kind quoted only in part, the old maze still running; a built-in maze loads, `maze`
+    and the markers follow; a maze with 5 ms steps runs at real time, one with steps longer than
+    ~publish_rate allows is refused;
   - dynamic_reconfigure: restitution 0.9 acts on the next bounce as eq. (1) says (the upward
     speed after it is 0.9 times the approach, less the gravity since, within 1e-6 m/s); a bad
     value is refused and nothing changes; the values in force are on the parameter server, and
@@ -244,7 +245,6 @@ class ServicesTest(unittest.TestCase):
         odom = self.odom.wait(lambda m: True)
         self.assertEqual((odom.header.frame_id, odom.child_frame_id), ("world", "marble"))
 
-
     def test_8_a_step_too_costly_to_keep_up_with_leaves_the_node_answering(self):
         # A microsecond step of 1000 substeps, set live (within the documented ranges): a second
         # of ROS time is a billion substeps. The node takes at most a million a callback and
@@ -306,6 +306,7 @@ class ServicesTest(unittest.TestCase):
         for v in (state.position, state.velocity, state.angular_velocity):
             self.assertTrue(all(math.isfinite(c) for c in (v.x, v.y, v.z)))
         self.assertTrue(call("resume", Trigger).success)
+
     def test_9_steps_taken_while_paused_run_ahead_and_diagnostics_say_so(self):
         # Steps taken while paused keep their exact stamps, so they run ahead of ROS time: after
         # `resume` nothing new comes until ROS time has caught up, and /diagnostics says how far

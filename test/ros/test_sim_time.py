@@ -44,9 +44,9 @@ PUBLISH_PERIOD = 0.02  # s: 1 / publish_rate (default 50 Hz)
 ROLL = 0.01  # rad: the tilt of the motion test
 G = 9.81
 WAIT = 10.0  # s of wall time: the longest wait for anything that should happen
-# The closed form below is exact for the default integrator but for the marble's small settling into the
-# floor at the tilt (it matches to ~2e-8 m): these tolerances are tight enough that a tilt applied
-# one step (1 ms) late or early, about 7e-5 m and 7e-5 m/s off after a second, fails.
+# The closed form below is exact for the default integrator but for the marble's small settling
+# into the floor at the tilt (it matches to ~2e-8 m): these tolerances are tight enough that a
+# tilt applied one step (1 ms) late or early, about 7e-5 m and 7e-5 m/s off after a second, fails.
 POS_TOL = 1e-6  # m
 SPEED_TOL = 1e-6  # m/s
 
@@ -223,7 +223,10 @@ class SimTimeTest(unittest.TestCase):
         # It says so, once, 2 s of wall time after its start (it said nothing: its check ran on
         # a timer of ROS time, which stands still until a clock comes).
         deadline = time.time() + WAIT
-        waiting = lambda: [s for s in self.said if "waiting for /clock" in s]
+
+        def waiting():
+            return [s for s in self.said if "waiting for /clock" in s]
+
         while not waiting() and time.time() < deadline:
             time.sleep(0.1)
         self.assertEqual(len(waiting()), 1, "said: %s" % self.said)

@@ -1,5 +1,5 @@
-// The generated mazes of the step's benchmarks and cost tests. Only the maze's interface of the
-// first commit is asked for, so that make speedup can build them against any core since.
+// The scenes of the step's benchmark (make bench), shared with the tests that bound what those
+// scenes cost in counts (test_step_cost.cpp) and that use their mazes (test_collision.cpp).
 #pragma once
 
 #include <cstdlib>
@@ -8,7 +8,7 @@
 #include "marble_maze/maze.h"
 
 namespace marble_maze {
-namespace test {
+namespace bench {
 
 /// An N x N cell maze of the classic game's proportions: outer walls, inner walls from a hash
 /// of each wall's position relative to the centre, and a closed 4 x 4 cell room in the middle
@@ -39,5 +39,5 @@ inline Maze generatedMaze(int cells, bool walls = true) {
   return maze;
 }
 
-}  // namespace test
+}  // namespace bench
 }  // namespace marble_maze

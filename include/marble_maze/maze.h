@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,15 +55,8 @@ class Maze {
   const Cell& start() const { return start_; }
   void setStart(const Cell& c) { start_ = c; }
   const std::vector<Cell>& goals() const { return goals_; }
-  void addGoal(const Cell& c);
+  void addGoal(const Cell& c) { goals_.push_back(c); }
   bool isGoal(const Cell& c) const;
-  /// False where grid point p lies outside the rectangle round every goal's cell grown by a
-  /// period of slots each way, and so is over no goal (the slots' formula rounds a point's
-  /// column by far less); true over every goal: the finish check looks up no column elsewhere.
-  bool nearAGoal(const Vec3& p) const {
-    return p.x() >= goals_lower_[0] && p.x() <= goals_upper_[0] && p.y() >= goals_lower_[1] &&
-           p.y() <= goals_upper_[1];
-  }
   /// A hole is a column inside the grid whose floor tile (layer 0) is missing.
   bool isHole(const Cell& c) const;
   std::vector<Cell> holes() const;
@@ -94,10 +86,6 @@ class Maze {
   std::vector<std::uint8_t> tiles_;
   Cell start_;
   std::vector<Cell> goals_;
-  // That rectangle's x-y bounds (no goal: empty bounds).
-  static constexpr double kNoBound = std::numeric_limits<double>::infinity();
-  double goals_lower_[2] = {kNoBound, kNoBound};
-  double goals_upper_[2] = {-kNoBound, -kNoBound};
   std::string name_;
 };
 

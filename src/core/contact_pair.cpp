@@ -88,10 +88,7 @@ bool ContactSolver::solvePair(const std::vector<Contact>& contacts, double resti
   // One sticks (s), the other slips (l): the slip across is S = A_s + A_l whatever the
   // frictions, along it is beta + gamma fl_b, and the slip's friction is -lambda times its slip,
   // with lambda = mu N_l / |slip| and N_l = C + lambda S.
-  // (The second frame only when the first fails: the floor sticking under a marble rolling
-  // along a wall, the common case, comes first in the grid's order.)
-  for (int second = 0; second < 2; ++second) {
-    const Frame f = second ? frame(1, 0) : ab;
+  for (const Frame& f : {ab, frame(1, 0)}) {
     const double ds = -f.A_s * inv_g;
     const double S = f.A_s + f.A_l;
     const double beta = f.wl_t - f.ws_t * constants_.inv_mk;

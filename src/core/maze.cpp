@@ -28,17 +28,6 @@ void Maze::setSolid(const Index3& t, bool solid) {
     }
 }
 
-void Maze::addGoal(const Cell& c) {
-  goals_.push_back(c);
-  // A period (a thin and a wide slot) more each way: far more than the slots' formula rounds by.
-  const int cell[2] = {c.i, c.j};
-  for (int a = 0; a < 2; ++a) {
-    const double period = axes_[a].thin() + axes_[a].wide();
-    goals_lower_[a] = std::min(goals_lower_[a], axes_[a].lower(cell[a]) - period);
-    goals_upper_[a] = std::max(goals_upper_[a], axes_[a].upper(cell[a]) + period);
-  }
-}
-
 bool Maze::isGoal(const Cell& c) const {
   return std::find(goals_.begin(), goals_.end(), c) != goals_.end();
 }

@@ -591,9 +591,7 @@ void Simulation::checkFinish(double time) {
   const bool at_goal_height = !maze_.goals().empty() && height < floor_top + 2 * r;
   const bool finite = std::isfinite(height);
   if (finite && !below && !at_goal_height) return;
-  const Vec3 grid = frame_.toGrid(marble_.position);
-  if (finite && !below && !maze_.nearAGoal(grid)) return;  // at the goals' height, over none
-  const Maze::Cell cell = maze_.cellAt(grid);
+  const Maze::Cell cell = maze_.cellAt(frame_.toGrid(marble_.position));
   const Index3 floor_tile(cell.i, cell.j, 0);
   if (!finite) {
     hold(MarblePhase::OffBoard, EventKind::OffBoard, floor_tile, time);

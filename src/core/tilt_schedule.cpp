@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string_view>
+#include <sstream>
 
 #include "marble_maze/in_quotes.h"
 #include "marble_maze/params.h"
@@ -10,40 +10,20 @@
 
 namespace marble_maze {
 
-namespace {
-
-/// The fields of `row` between its commas, as std::getline reads them (a comma that ends the row
-/// starts no further one), into `fields`, whose strings keep their storage from row to row.
-void splitFields(std::string_view row, std::vector<std::string>* fields) {
-  std::size_t count = 0;
-  for (std::size_t start = 0; start < row.size(); ++count) {
-    const std::size_t comma = std::min(row.find(',', start), row.size());
-    if (fields->size() == count) fields->emplace_back();
-    (*fields)[count].assign(row.substr(start, comma - start));
-    start = comma + 1;
-  }
-  fields->resize(count);
-}
-
-}  // namespace
-
 TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& source) {
-  // (Lines and fields are read in place: a stream for each row was more than half the reading.)
   TiltSchedule schedule;
-  std::vector<std::string> fields;
+  std::istringstream in(text);
+  std::string line;
   bool first_row = true;
-  int number = 0;
-  for (std::size_t start = 0; start < text.size();) {
-    const std::size_t end = std::min(text.find('\n', start), text.size());
-    std::string_view line(text.data() + start, end - start);
-    start = end + 1;
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (line.find_first_not_of(" \t") == std::string_view::npos || line[0] == '#') continue;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
     const auto error = [&](const std::string& message) {
       return std::runtime_error(source + ":" + std::to_string(number) + ": " + message);
     };
-    splitFields(line, &fields);
+    std::vector<std::string> fields;
+    std::istringstream row(line);
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
     Point p{};
     const bool numeric = fields.size() == 3 && parseFiniteNumber(fields[0], &p.time) &&
                          parseFiniteNumber(fields[1], &p.roll) &&
@@ -52,8 +32,7 @@ TiltSchedule TiltSchedule::parse(const std::string& text, const std::string& sou
     first_row = false;
     if (!numeric) {
       if (header) continue;  // the first row may name the columns; no other row may be words
-      throw error("expected three numbers t,roll,pitch (s, rad, rad), got " +
-                  inQuotes(std::string(line)));
+      throw error("expected three numbers t,roll,pitch (s, rad, rad), got " + inQuotes(line));
     }
     // (A board turns at most a quarter turn, the largest tilt_limit: a larger angle is a mistake,
     // and one near the largest double would overflow between rows.)

@@ -295,7 +295,9 @@ TEST(FindContacts, AFullBottomLayerOfNearTilesGivesTheContactsOfAFreshLook) {
                                                       : "low");
     EXPECT_GT(contacts_seen, 10000);
     // Among the walls, most with walls near: the layer above the floor looked at tile by tile.
-    if (maze == &mazed || maze == &low) EXPECT_GT(with_walls, 10000);
+    if (maze == &mazed || maze == &low) {
+      EXPECT_GT(with_walls, 10000);
+    }
   }
 }
 

@@ -637,43 +637,6 @@ TEST(Finish, ReachingTheGoalIsReported) {
   EXPECT_EQ(sim.marble().phase, MarblePhase::AtGoal);
 }
 
-TEST(Finish, EveryPointOverAGoalIsNearOneAndPointsFarFromThemAreNot) {
-  // The finish check looks up a column only near a goal (Maze::nearAGoal): every point whose
-  // column is a goal must be near one, on the goal cells' seams too (a boundary belongs to the
-  // upper slot), and points well outside the goals' rectangle grown by a period are not.
-  const AxisSlots x(0.005, 0.0221, 21), y(0.008, 0.04, 15), z(0.005, 0.012, 2);
-  Maze maze = test::floorMaze(x, y, z);
-  EXPECT_FALSE(maze.nearAGoal(Vec3(x.centre(7), y.centre(5), 0)));  // no goal yet: near none
-  maze.addGoal({7, 5});
-  maze.addGoal({13, 9});
-  std::mt19937 random(3);
-  const auto uniform = [&](double lo, double hi) {
-    return lo + (hi - lo) * std::generate_canonical<double, 53>(random);
-  };
-  int over_goals = 0, near_goals = 0;
-  for (int n = 0; n < 200000; ++n) {
-    Vec3 p(uniform(-0.02, x.length() + 0.02), uniform(-0.02, y.length() + 0.02), 0);
-    // On a slot's boundary, or a rounding error beside one, now and then.
-    for (int a = 0; a < 2; ++a) {
-      const AxisSlots& slots = maze.axis(a);
-      if (n % (3 + a) == 0) p[a] = slots.lower(slots.slotAt(p[a]));
-      if (n % (5 + a) == 0) p[a] = std::nextafter(p[a], n % 2 ? 1.0 : -1.0);
-    }
-    const Maze::Cell cell = maze.cellAt(p);
-    const bool over = maze.isGoal(cell), near = maze.nearAGoal(p);
-    if (over) ASSERT_TRUE(near) << "at " << p.transpose();
-    // (Over a column beyond the rectangle round both goals grown by a period (two slots), not
-    // on its boundary, which a column's rounding may put either side: the check need not be
-    // tighter.)
-    const bool far = cell.i < 7 - 3 || cell.i > 13 + 3 || cell.j < 5 - 3 || cell.j > 9 + 3;
-    if (far) EXPECT_FALSE(near) << "at " << p.transpose();
-    over_goals += over;
-    near_goals += near;
-  }
-  EXPECT_GT(over_goals, 500);           // the goals' cells were sampled, their seams among them
-  EXPECT_LT(near_goals, 200000 * 0.6);  // and most points are near no goal
-}
-
 // --- Board -----------------------------------------------------------------------------------
 
 TEST(Board, TiltIsClampedToTheLimitAndRateLimited) {

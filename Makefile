@@ -55,7 +55,7 @@ ws:
 screenshot: build
 	@bash scripts/screenshot.sh doc/demo.png 8
 
-# catkin_lint, clang-tidy, flake8 and shellcheck.
+# catkin_lint, clang-format (as a check), clang-tidy, flake8 and shellcheck.
 lint: build
 	@bash scripts/lint.sh
 

@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "marble_maze/simulation.h"
 #include "bench_mazes.h"
+#include "marble_maze/simulation.h"
 
 namespace mm = marble_maze;
 

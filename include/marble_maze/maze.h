@@ -1,6 +1,7 @@
 // The maze: a 3-D grid of box tiles in the board frame, with its start, goals and holes.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -78,11 +79,12 @@ class Maze {
     return (static_cast<std::size_t>(t.z()) * size_.y() + t.y()) * size_.x() + t.x();
   }
 
-  AxisSlots axes_[3];
+  std::array<AxisSlots, 3> axes_;
   Index3 size_ = Index3::Zero();
   Vec3 extent_ = Vec3::Zero();  // looked up on the hot path
   Vec3 pivot_ = Vec3::Zero();
-  std::vector<double> bounds_[3];  // slot boundaries per axis, looked up on the hot path
+  std::array<std::vector<double>, 3>
+      bounds_;  // slot boundaries per axis, looked up on the hot path
   std::vector<std::uint8_t> tiles_;
   Cell start_;
   std::vector<Cell> goals_;

@@ -22,7 +22,7 @@ struct TileRange {
 /// Whether a grid-frame box [lower, upper] reaches into the grid at all: a marble far above the
 /// board (in flight) looks up no slot.
 bool overlapsGrid(const Maze& maze, const Vec3& lower, const Vec3& upper) {
-  const Vec3 extent = maze.extent();
+  const Vec3& extent = maze.extent();
   return (upper.array() >= 0).all() && (lower.array() <= extent.array()).all();
 }
 

@@ -126,6 +126,7 @@ template <typename T>
 Entry choice(const char* key, const char* help, T Params::*member,
              std::vector<std::pair<std::string, T>> names) {
   std::vector<std::string> choices;
+  choices.reserve(names.size());
   for (const auto& named : names) choices.push_back(named.first);
   return {{key, "", help, ParamInfo::Type::Choice, 0, 0, choices, false},
           [=](Params& p, const std::string& text) {

@@ -187,7 +187,7 @@ void MazeNode::keepingTime(const std::function<void()>& change) {
   });
 }
 
-void MazeNode::logInput(std::uint8_t kind, marble_maze::SimInput input) {
+void MazeNode::logInput(std::uint8_t kind, const marble_maze::SimInput& input) {
   log_->input(input, kind, session_->steps(), stampNow());
   if (kind != marble_maze::SimInput::PAUSE && kind != marble_maze::SimInput::RESUME)
     log_->snapshot(*session_, clock_, stampNow());
@@ -399,8 +399,8 @@ std::string MazeNode::resume() {
 
 std::string MazeNode::stepPaused(std::uint32_t steps, marble_maze::MarbleState* after) {
   if (!session_->paused()) return "steps: only while paused (the simulation runs): call pause";
-  const std::string why = whyTooMuchWork(steps, session_->simulation().params(),
-                                         "steps: " + std::to_string(steps) + " steps are");
+  std::string why = whyTooMuchWork(steps, session_->simulation().params(),
+                                   "steps: " + std::to_string(steps) + " steps are");
   if (!why.empty()) return why;
   runSteps(steps);
   publishNow();
@@ -467,7 +467,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
       }
     }
     mm::validate(params);
-    const std::string why = whyNotRunnable(settings_, params);
+    std::string why = whyNotRunnable(settings_, params);
     if (!why.empty()) return why;
     keepingTime([&] { session_->setParams(params); });
   } catch (const mm::ParamError& e) {

@@ -64,7 +64,7 @@ class MazeNode {
   /// substeps in force: more are skipped, with a warning.
   double mostStepsPerCall() const;
   /// An input of a service, at the current step, and the state after it.
-  void logInput(std::uint8_t kind, marble_maze::SimInput input = marble_maze::SimInput());
+  void logInput(std::uint8_t kind, const marble_maze::SimInput& input = marble_maze::SimInput());
   std::uint64_t stepsPer(double seconds) const;
   /// Warns when ~lockstep is not a whole number of steps (each command then advances the
   /// nearest whole number of them).

@@ -176,9 +176,8 @@ std::string whyTooMuchWork(double steps, const mm::Params& params, const std::st
 
 std::string whyNotRunnable(const NodeSettings& settings, const mm::Params& params) {
   const std::string step = "step: " + mm::exactText(params.step) + " s makes ";
-  const std::string why =
-      whyTooMuchWork(settings.lockstep / params.step, params,
-                     step + "~lockstep's " + mm::exactText(settings.lockstep) + " s");
+  std::string why = whyTooMuchWork(settings.lockstep / params.step, params,
+                                   step + "~lockstep's " + mm::exactText(settings.lockstep) + " s");
   if (!why.empty()) return why;
   // Rates of simulated time: at most one message a step.
   const double per_second = 1.0 / params.step;

@@ -53,7 +53,7 @@ std::vector<std::string> topicsFrom(const ros::NodeHandle& pnh) {
 
 class Recorder {
  public:
-  Recorder(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  Recorder(ros::NodeHandle nh, const ros::NodeHandle& pnh) {
     const std::string path = readText(pnh, "bag", "");
     if (path.empty()) throw std::runtime_error(pnh.resolveName("bag") + ": required");
     const double queue = readNumber(pnh, "queue", 100000, 1, 1e7);
@@ -101,6 +101,18 @@ class Recorder {
   }
 
   ~Recorder() {
+    // (A bag that cannot be written is said, not thrown out of a destructor.)
+    try {
+      finish();
+    } catch (const std::exception& e) {
+      ROS_ERROR("record: %s: %s", activePath().c_str(), e.what());
+    }
+  }
+
+ private:
+  using Event = ros::MessageEvent<topic_tools::ShapeShifter const>;
+
+  void finish() {
     subscribers_.clear();
     // A clock that never started: what came is kept, at the earliest time a bag holds.
     for (const Early& e : early_) writeAt(e.topic, ros::TIME_MIN, e.event);
@@ -112,9 +124,6 @@ class Recorder {
       ROS_ERROR("record: could not name %s %s: %s", activePath().c_str(), path_.c_str(),
                 error.message().c_str());
   }
-
- private:
-  using Event = ros::MessageEvent<topic_tools::ShapeShifter const>;
 
   /// Opens PATH.active, which is named PATH when it is closed, as rosbag record does: a recorder
   /// killed outright leaves a file that says it did not end, not one that looks whole and cannot

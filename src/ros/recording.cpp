@@ -68,6 +68,7 @@ Recording readRecording(const std::string& path) {
   // receive two messages of one instant (a lockstep node's latched scene and first snapshot, at
   // one simulated time) in either order.
   std::vector<std::size_t> scene_after;  // the snapshots received before each scene
+  scene_after.reserve(scene_received.size());
   for (const ros::Time& t : scene_received)
     scene_after.push_back(static_cast<std::size_t>(
         std::lower_bound(snapshot_received.begin(), snapshot_received.end(), t) -

@@ -24,7 +24,7 @@ using marble_maze_ros::NodeSettings;
 
 class ReplayNode {
  public:
-  ReplayNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh) {
+  ReplayNode(ros::NodeHandle nh, const ros::NodeHandle& pnh) : nh_(nh) {
     std::string bag;
     if (!pnh.getParam("bag", bag))
       throw std::runtime_error(pnh.resolveName("bag") + ": required: a bag of record.launch");

@@ -40,7 +40,7 @@ void TiltInput::checkNoneLost(const std::string& topic, const std::string& publi
 }
 
 void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& event) {
-  const marble_maze::BoardTilt::ConstPtr msg = event.getConstMessage();
+  const marble_maze::BoardTilt::ConstPtr& msg = event.getConstMessage();
   checkNoneLost(tilt_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll) || !std::isfinite(msg->pitch)) {
     MARBLE_MAZE_WARN_WALL_THROTTLE(
@@ -58,7 +58,7 @@ void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& ev
 }
 
 void TiltInput::onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltRate>& event) {
-  const marble_maze::BoardTiltRate::ConstPtr msg = event.getConstMessage();
+  const marble_maze::BoardTiltRate::ConstPtr& msg = event.getConstMessage();
   checkNoneLost(rate_topic_, event.getPublisherName(), msg->header);
   if (!std::isfinite(msg->roll_rate) || !std::isfinite(msg->pitch_rate)) {
     MARBLE_MAZE_WARN_WALL_THROTTLE(

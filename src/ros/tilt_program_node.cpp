@@ -15,7 +15,7 @@ namespace {
 
 class TiltProgramNode {
  public:
-  TiltProgramNode(ros::NodeHandle nh, ros::NodeHandle pnh) {
+  TiltProgramNode(ros::NodeHandle nh, const ros::NodeHandle& pnh) {
     // (A parameter of the wrong type is named, as the other nodes name theirs.)
     const std::string path = marble_maze_ros::readText(pnh, "program", "");
     if (path.empty())

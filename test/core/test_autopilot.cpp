@@ -61,7 +61,7 @@ Drive drive(const Scene& scene, double limit, const AutopilotSettings& settings,
       std::uint64_t acts =
           sim.steps() + latency.delay + (latency.jitter > 0 ? random() % (latency.jitter + 1) : 0);
       if (!sent.empty()) acts = std::max(acts, sent.back().first);
-      sent.push_back({acts, pilot.steer(seen)});
+      sent.emplace_back(acts, pilot.steer(seen));
     }
     for (; !sent.empty() && sent.front().first <= sim.steps(); sent.pop_front())
       sim.setTargetTilt(sent.front().second.roll, sent.front().second.pitch);
@@ -109,7 +109,7 @@ std::vector<std::pair<Maze::Cell, Scene>> tenClassicStarts() {
     const Vec2 at = planner.centre(cells[n]);
     scene.params.has_start_position = true;
     scene.params.start_position = Vec3(at.x(), at.y(), scene.params.marble_radius);
-    starts.push_back({cells[n], scene});
+    starts.emplace_back(cells[n], scene);
   }
   return starts;
 }

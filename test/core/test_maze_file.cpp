@@ -67,7 +67,7 @@ bool routeExists(const Maze& maze) {
     return i >= 0 && j >= 0 && i < maze.size().x() && j < maze.size().y() &&
            !maze.solid({i, j, 1}) && !maze.isHole({i, j});
   };
-  std::vector<bool> seen(maze.size().x() * maze.size().y(), false);
+  std::vector<bool> seen(static_cast<std::size_t>(maze.size().x()) * maze.size().y(), false);
   std::deque<Maze::Cell> queue;
   if (!passable(maze.start().i, maze.start().j)) return false;
   queue.push_back(maze.start());

@@ -380,7 +380,7 @@ void Simulation::substep(double h, double start_time) {
   // The contacts' forces act over the substep while the board turns: they push along its normals
   // in its pose at the instant the scheme's forces belong to: the middle of the substep (the
   // midpoint rule), or for a velocity half a substep behind its position (semi-implicit Euler's,
-  // a leapfrog) the start. With the start's, velocity Verlet and RK4 were 100 times less
+  // a leapfrog) the start. With the start's, velocity Verlet and RK4 would be 100 times less
   // accurate on a turning board (all three stay first order there, through what else a substep
   // takes at its start). A rotation, not normals interpolated one by one: contacts at right
   // angles stay at right angles.

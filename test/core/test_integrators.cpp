@@ -263,7 +263,7 @@ double turningBoardError(IntegratorKind integrator, double step) {
 TEST(TurningBoard, AFrictionlessMarbleFollowsTheClosedForm) {
   // Each scheme within 4 um of the closed form at 1 ms (it moves 1.6 mm), and closer at 0.5 ms.
   // The contacts' forces push along the board's normal at the instant the scheme's forces
-  // belong to; at the substep's start, velocity Verlet and RK4 were 197 um off at 1 ms.
+  // belong to; at the substep's start, velocity Verlet and RK4 would be 197 um off at 1 ms.
   for (IntegratorKind integrator : {IntegratorKind::SemiImplicitEuler,
                                     IntegratorKind::VelocityVerlet, IntegratorKind::RungeKutta4}) {
     const double coarse = std::abs(turningBoardError(integrator, 1e-3));

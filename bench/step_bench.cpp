@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_mazes.h"
+#include "marble_maze/csv.h"
 #include "marble_maze/simulation.h"
 
 namespace mm = marble_maze;
@@ -54,15 +55,21 @@ inline void mazeSizes(benchmark::internal::Benchmark* b) {
 
 /// Steps the simulation under the circling tilt, and starts it over when it finishes or every
 /// `restart_every` steps (0: never). The tilts are worked out beforehand so that only the step
-/// is timed. Returns the steps taken.
+/// is timed (and, with `rows`, a trajectory row of the runner's CSV after each step). Returns
+/// the steps taken.
 inline std::size_t stepUnderCirclingTilt(benchmark::State& state, Simulation* sim,
-                                         std::size_t restart_every = 0) {
+                                         std::size_t restart_every = 0,
+                                         std::string* rows = nullptr) {
   const std::vector<std::pair<double, double>> tilts = circlingTilts(sim->params().step);
   std::size_t n = 0;
   for (auto _ : state) {
     const auto& [roll, pitch] = tilts[n++ % tilts.size()];
     sim->setTargetTilt(roll, pitch);
     sim->step();
+    if (rows) {
+      appendTrajectoryRow(rows, *sim);
+      if (rows->size() > 65536) rows->clear();  // (as a file's buffer is written out)
+    }
     if (sim->marble().phase != MarblePhase::Free || (restart_every && n % restart_every == 0))
       sim->reset();
   }
@@ -86,11 +93,12 @@ const mm::Scene& sceneOfSize(int cells) {
   return it->second;
 }
 
-/// The timed loop (step_loop.h), and what the steps cost in counts: substeps, sweeps, gathers,
-/// tiles swept, and the pair solver's Newton steps a solve.
-void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_every = 0) {
+/// The timed loop, and what the steps cost in counts: substeps, sweeps, gathers, tiles swept,
+/// and the pair solver's Newton steps a solve.
+void runSteps(benchmark::State& state, mm::Simulation* sim, std::size_t restart_every = 0,
+              std::string* rows = nullptr) {
   const mm::StepCounts before = sim->counts();
-  const std::size_t n = mm::bench::stepUnderCirclingTilt(state, sim, restart_every);
+  const std::size_t n = mm::bench::stepUnderCirclingTilt(state, sim, restart_every, rows);
   const mm::StepCounts after = sim->counts();
   const double steps = static_cast<double>(std::max<std::size_t>(n, 1));
   state.counters["substeps"] = static_cast<double>(after.substeps - before.substeps) / steps;
@@ -185,6 +193,15 @@ void BM_StepBySubsteps(benchmark::State& state) {
   runSteps(state, &sim);
 }
 BENCHMARK(BM_StepBySubsteps)->Apply(fixedSteps)->ArgName("substeps")->Arg(1)->Arg(4)->Arg(16);
+
+/// simulate --out at every step: a step in the 10 x 10 maze, then the same with a trajectory row
+/// of the CSV after it. The second's ratio in its group, less one, is a row's cost in steps.
+void BM_StepWithCsvRow(benchmark::State& state) {
+  mm::Simulation sim(sceneOfSize(10));
+  std::string rows;
+  runSteps(state, &sim, 0, state.range(0) ? &rows : nullptr);
+}
+BENCHMARK(BM_StepWithCsvRow)->Apply(fixedSteps)->ArgName("row")->Arg(0)->Arg(1);
 
 /// Prints the usual table, then each case as a ratio to the first case of its group.
 class RatioReporter : public benchmark::ConsoleReporter {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "marble_maze/exact_text.h"
 #include "marble_maze/geometry.h"
 
 namespace marble_maze {
@@ -102,9 +103,6 @@ std::string paramsText(const Params& params);
 
 /// Params from paramsText's lines over `base`; throws ParamError naming a bad line.
 Params paramsFromText(const std::string& text, Params base = Params());
-
-/// The shortest text that reads back as exactly the same double.
-std::string exactText(double value);
 
 /// "NAME: VALUE is out of range [MIN, MAX]", each number exact (a value just beyond a bound must
 /// not read as the bound).

@@ -22,17 +22,6 @@ std::string Params::whyTooFast(double speed) const {
          " m/s (1e5 radii a step) that a step resolves";
 }
 
-/// The shortest text that reads back as exactly the same double.
-std::string exactText(double value) {
-  if (std::isnan(value)) return "nan";  // (its sign says nothing; printf would show "-nan")
-  char text[32];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
-}
-
 std::string outOfRangeText(const std::string& name, double value, double min, double max) {
   return name + ": " + exactText(value) + " is out of range [" + exactText(min) + ", " +
          exactText(max) + "]";

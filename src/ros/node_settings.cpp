@@ -16,22 +16,21 @@ namespace {
 /// "0.1,0,0.006"; a list [0.1, 0, 0.006] is the same); throws naming the parameter when it has
 /// no such form.
 std::string asText(XmlRpc::XmlRpcValue value, const std::string& name) {
-  std::ostringstream out;
-  out << std::setprecision(17);
   switch (value.getType()) {
     case XmlRpc::XmlRpcValue::TypeDouble:
-      out << static_cast<double>(value);
-      return out.str();
+      return mm::exactText(static_cast<double>(value));
     case XmlRpc::XmlRpcValue::TypeInt:
       return std::to_string(static_cast<int>(value));
     case XmlRpc::XmlRpcValue::TypeBoolean:
       return static_cast<bool>(value) ? "true" : "false";
     case XmlRpc::XmlRpcValue::TypeString:
       return static_cast<std::string>(value);
-    case XmlRpc::XmlRpcValue::TypeArray:
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      std::string text;
       for (int i = 0; i < value.size(); ++i)
-        out << (i ? "," : "") << asText(value[i], name + "[" + std::to_string(i) + "]");
-      return out.str();
+        text += (i ? "," : "") + asText(value[i], name + "[" + std::to_string(i) + "]");
+      return text;
+    }
     default:
       throw std::runtime_error(name + ": expected a number, a string or a list of numbers");
   }

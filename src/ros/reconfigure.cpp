@@ -2,9 +2,6 @@
 
 #include <dynamic_reconfigure/ConfigDescription.h>
 
-#include <iomanip>
-#include <sstream>
-
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
@@ -30,12 +27,6 @@ std::string enumOf(const mm::ParamInfo& info) {
              "', 'type': 'str', 'value': '" + name + "', 'srcline': 0, 'srcfile': '', " +
              "'cconsttype': 'const char * const', 'ctype': 'std::string', 'description': ''}";
   return "{'enum': [" + items + "], 'enum_description': '" + info.key + "'}";
-}
-
-std::string text(double value) {
-  std::ostringstream out;
-  out << std::setprecision(17) << value;
-  return out.str();
 }
 
 void add(const mm::ParamInfo& info, const std::string& value, dynamic_reconfigure::Config* c) {
@@ -85,9 +76,9 @@ Reconfigure::Reconfigure(ros::NodeHandle& pnh, std::vector<mm::ParamInfo> extra,
   }
   description.groups.push_back(group);
   description.min =
-      config([](const mm::ParamInfo& i) { return i.choices.empty() ? text(i.min) : ""; });
+      config([](const mm::ParamInfo& i) { return i.choices.empty() ? mm::exactText(i.min) : ""; });
   description.max =
-      config([](const mm::ParamInfo& i) { return i.choices.empty() ? text(i.max) : ""; });
+      config([](const mm::ParamInfo& i) { return i.choices.empty() ? mm::exactText(i.max) : ""; });
   description.dflt = config([this](const mm::ParamInfo& i) { return current_(i.key); });
 
   descriptions_pub_ =
@@ -132,7 +123,7 @@ bool Reconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
     }
     ROS_WARN("reconfigure: '%s' cannot be changed while running; ignored", key.c_str());
   };
-  for (const auto& p : req.config.doubles) consider(p.name, text(p.value));
+  for (const auto& p : req.config.doubles) consider(p.name, mm::exactText(p.value));
   for (const auto& p : req.config.ints) consider(p.name, std::to_string(p.value));
   for (const auto& p : req.config.strs) consider(p.name, p.value);
   for (const auto& p : req.config.bools) consider(p.name, p.value ? "true" : "false");

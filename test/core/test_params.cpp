@@ -1,8 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
+#include <random>
+#include <string>
 
 #include "marble_maze/params.h"
 
@@ -74,6 +80,40 @@ TEST(ExactText, ReadsBackExactlyAndSaysNanWithoutASign) {
   EXPECT_EQ(exactText(nan), "nan");
   EXPECT_EQ(exactText(-nan), "nan");  // a sign that printf would show as "-nan"
   EXPECT_EQ(exactText(-std::numeric_limits<double>::infinity()), "-inf");
+}
+
+TEST(ExactText, IsPrintfsShortestGeneralFormOfAtLeastSixDigits) {
+  // The oracle: printf's %g at 6, 7, ... 17 digits, the first that reads back exactly.
+  const auto printfs = [](double v) {
+    char text[64];
+    for (int digits = 6; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, v);
+      if (std::strtod(text, nullptr) == v) break;
+    }
+    return std::string(text);
+  };
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (double v :
+       {0.0, -0.0, 1.0, 1000.0, 100000.0, 1e6, 1234567.0, 0.0001, 1e-5, 1e158,
+        2.2250738585072014e-308, 1.7976931348623157e308, 0.2617993877991494, 123456.5, 99999.99})
+    EXPECT_EQ(exactText(v), printfs(v));
+  // (A subnormal's shortest digits can be fewer than the six printf pads it to: 5e-324 rather
+  // than 4.94066e-324, both read back as the same double.)
+  EXPECT_EQ(exactText(5e-324), "5e-324");
+  for (int n = 0; n < 300000; ++n) {
+    double v;
+    if (n % 3 == 0) {  // any bits that are a number
+      const std::uint64_t bits = random();
+      std::memcpy(&v, &bits, sizeof v);
+      if (std::isnan(v) || (v != 0 && std::abs(v) < std::numeric_limits<double>::min())) continue;
+    } else if (n % 3 == 1) {  // every scale a simulation meets
+      v = unit(random) * std::pow(10.0, static_cast<int>(random() % 40) - 20);
+    } else {  // few digits: a user's values
+      v = std::round(unit(random) * 1e6) / std::pow(10.0, static_cast<int>(random() % 12));
+    }
+    ASSERT_EQ(exactText(v), printfs(v)) << "bits of " << v;
+  }
 }
 
 TEST(Params, ValidateRefusesAThresholdThatWouldMakeSemiImplicitEulerBounceAtRest) {

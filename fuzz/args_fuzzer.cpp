@@ -1,8 +1,8 @@
-// Fuzzes the runner's command line (simulate): the input is its arguments, one a line (corpus:
-// fuzz/corpus/args). Every command line is either refused with a UsageError that says something,
-// or it builds a simulation that then runs (the first 200 steps of it at most, under its tilt).
-// Flags that name files to write or read (--out, --events, --bag, --tilt-csv, a --maze path) are
-// left to the maze fuzzer and the tests: the fuzzer touches no file.
+// Fuzzes the runners' command line (simulate, resimulate): the input is its arguments, one a line
+// (corpus: fuzz/corpus/args). Every command line is either refused with a UsageError that says
+// something, or it builds a simulation that then runs (the first 200 steps of it at most, under its
+// tilt). Flags that name files to write or read (--out, --events, --bag, --tilt-csv, a --maze path)
+// are left to the maze fuzzer and the tests: the fuzzer touches no file.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -35,13 +35,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const double step = run.scene.params.step;
     // At most 200 steps and 2000 substeps: the run's start is what is fuzzed, not its length.
     const double steps = std::min(200.0, o.duration / step + 0.5);
-    std::size_t tilt_row = 0;
-    for (int n = 1; n <= steps && run.sim->counts().substeps < 2000; ++n) {
-      const mm::TiltSchedule::Point tilt = mm::runner::tiltBeforeStep(o, n, step, &tilt_row);
-      run.sim->setTargetTilt(tilt.roll, tilt.pitch);
-      run.sim->step();
-    }
-    if (!run.sim->marble().position.allFinite()) std::abort();
+    const mm::Simulation& sim = run.session->simulation();
+    for (int n = 1; n <= steps && sim.counts().substeps < 2000; ++n) mm::runner::playStep(o, &run);
+    if (!sim.marble().position.allFinite()) std::abort();
   } catch (const mm::runner::UsageError& e) {
     if (std::string(e.what()).size() < 10) std::abort();  // a refusal says why
   }

@@ -1,5 +1,5 @@
 // Fuzzes a session's restore from a snapshot, as a bag's `snapshot` topic hands it over
-// (simulate --bag, the replay node). An input is either a list of edits to a sound snapshot (a
+// (resimulate --bag, the replay node). An input is either a list of edits to a sound snapshot (a
 // session on the classic maze, mid-play with two commands queued): each three bytes, a 16-bit
 // offset into it and the byte to put there, so that every value of the state is reached; or,
 // behind a first byte 0xFF, the snapshot's bytes themselves (fuzz/corpus/snapshot/raw_sound_v3

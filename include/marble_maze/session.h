@@ -36,6 +36,9 @@ struct TiltCommand {
   std::uint64_t order = 0;
 };
 
+/// The way to drive a simulation: a Simulation with the command queue, the timed actions, pause,
+/// place, load and snapshots that the node, the runner (simulate) and the replay share, so that
+/// the same inputs mean the same in each.
 class Session {
  public:
   /// Throws ParamError when the scene's parameters are inconsistent, and MazeFileError when the

@@ -53,8 +53,13 @@ struct StepCounts {
   PairSolveCounts pairs;           ///< the contact solver's pairs: Newton's method and its steps
 };
 
-/// A marble on a tilting board. Deterministic: the same scene and inputs give bit-identical
-/// states; nothing depends on wall time, addresses or threads.
+/// A marble on a tilting board: the engine, a step at a time. Deterministic: the same scene and
+/// inputs give bit-identical states; nothing depends on wall time, addresses or threads.
+///
+/// To drive a simulation, use Session (session.h): tilt commands through its queue, the tilt and
+/// rate timeouts, the auto reset, pause, place, load and snapshots, as the node, the runner and
+/// the replay drive it. Simulation's own setters (setTargetTilt, setTiltRate, placeMarble) are
+/// the lower-level access beneath it, for the engine's tests, the benchmark and the trade sweep.
 ///
 /// Frames: the world's z points up (REP 103) and gravity along -z. The board frame has its origin
 /// at the pivot (the centre of the floor's top surface), which stays at the world's origin, and

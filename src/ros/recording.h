@@ -2,7 +2,7 @@
 // restored from the bag's first snapshot, every later input applied at the step it took effect
 // at (under another step length, at the first step at or after its simulated time), and the
 // clock anchored where the original's was, so that each step carries the original's stamp. Shared
-// by the node's replay (~bag) and `simulate --bag`; reads bags with rosbag's C++ API, with no ROS
+// by the node's replay (~bag) and `resimulate`; reads bags with rosbag's C++ API, with no ROS
 // master.
 #pragma once
 

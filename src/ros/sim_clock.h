@@ -1,6 +1,6 @@
 // How ROS time and the session's steps relate: an anchor ties a step to a ROS time, and each step
 // after it lasts the step's length in whole nanoseconds, so that a step's stamp is exact and the
-// same wherever it is worked out (the node, its replay, simulate --bag). Following ROS time (the
+// same wherever it is worked out (the node, its replay, resimulate --bag). Following ROS time (the
 // default) the steps due are those whose stamp has come; with ~clock or ~lockstep the node sets
 // the time itself and publishes it on /clock.
 #pragma once

@@ -56,17 +56,15 @@ Runs the marble_maze physics without ROS and reports what happened.
   --out FILE           write the trajectory as CSV ('-' for standard output)
   --events FILE        write the events as CSV ('-' for standard output)
   --every N            write every Nth step to the trajectory; default 1
+  --tilt-timeout S     after the tilt program's last row, the board holds its tilt S seconds,
+                       then levels, as the node does without commands; default 0 (holds)
+  --auto-reset S       S seconds after a hole or the goal the marble is put back on the start,
+                       as the node's ~auto_reset does; default 0 (it stays)
   --quiet              no summary on standard output
-  --bag FILE           re-simulate a session recorded by record.launch, from its first snapshot,
-                       with its inputs at their steps (no ROS master needed); --set re-runs it
-                       under other physics (its maze, tilts and length are the bag's:
-                       --maze, --tilt, --tilt-csv and --duration are refused with it)
-  --check              with --bag: compare with the bag's recorded marble_state, bit for bit;
-                       exit 1 at the first difference, printing its stamp and size (not
-                       with --set: other physics make other states)
   --help, -h           this text
 
 Each flag that takes a value, but --set, is given once; --tilt and --tilt-csv not together.
+A session recorded by record.launch is re-simulated by resimulate (resimulate --help).
 The board starts at the tilt program's first value unless initial_roll or initial_pitch is set
 (by --set or in the maze file's physics section).
 
@@ -186,6 +184,12 @@ Options parseOptions(const std::vector<std::string>& args) {
       o.bag = value_of();
     } else if (flag == "--events") {
       o.events = value_of();
+    } else if (flag == "--tilt-timeout" || flag == "--auto-reset") {
+      const std::string& value = value_of();
+      const double seconds = parseDouble(flag, value);
+      if (!(seconds >= 0 && seconds <= 1e6))
+        throw UsageError(flag + ": expected 0..1e6 seconds, got " + inQuotes(value));
+      (flag == "--tilt-timeout" ? o.tilt_timeout : o.auto_reset) = seconds;
     } else if (flag == "--every") {
       const std::string& value = value_of();
       const double n = parseDouble(flag, value);
@@ -209,7 +213,8 @@ Options parseOptions(const std::vector<std::string>& args) {
   // A recorded session brings its maze, its tilts and its length: a flag that would set them
   // again is refused rather than ignored.
   if (!o.bag.empty())
-    for (const char* flag : {"--maze", "--tilt", "--tilt-csv", "--duration"})
+    for (const char* flag :
+         {"--maze", "--tilt", "--tilt-csv", "--duration", "--tilt-timeout", "--auto-reset"})
       if (given.count(flag))
         throw UsageError(std::string(flag) + ": not with --bag, whose session sets it");
   // Other physics make other states: there is nothing the recording could confirm.
@@ -246,13 +251,30 @@ Run prepare(const Options& o) {
       scene.params.initial_roll = std::clamp(o.tilt.at(0).roll, -limit, limit);
       scene.params.initial_pitch = std::clamp(o.tilt.at(0).pitch, -limit, limit);
     }
-    run.sim = std::make_unique<Simulation>(scene);
+    SessionSettings settings;
+    settings.tilt_timeout = o.tilt_timeout;
+    settings.auto_reset = o.auto_reset;
+    run.session = std::make_unique<Session>(scene, settings);
   } catch (const MazeFileError& e) {
     throw UsageError(e.what());
   } catch (const ParamError& e) {  // values the maze file or --sets gave, refused together
     throw physicsRefusal(o, e, "");
   }
   return run;
+}
+
+void playStep(const Options& o, Run* run) {
+  Session& session = *run->session;
+  const double start = static_cast<double>(session.steps()) * run->scene.params.step;
+  if (start <= o.tilt.duration()) {
+    const TiltSchedule::Point tilt = o.tilt.at(start, &run->tilt_row);
+    TiltCommand command;
+    command.step = session.steps();
+    command.roll = tilt.roll;
+    command.pitch = tilt.pitch;
+    session.command(command);
+  }
+  session.run(1);
 }
 
 }  // namespace runner

@@ -1,6 +1,7 @@
-// The runner's command line (simulate): its options read and checked, and the simulation they
-// ask for built, with every refusal a UsageError naming the flag or key. Free of ROS and of
-// files written, so that the fuzzer drives it as the program does.
+// The runners' command line (simulate, and resimulate for a recorded session): its options read
+// and checked, and the session they ask for built and played, with every refusal a UsageError
+// naming the flag or key. Free of ROS and of files written, so that the fuzzer drives it as the
+// program does.
 #pragma once
 
 #include <cstddef>
@@ -13,7 +14,7 @@
 #include <vector>
 
 #include "marble_maze/maze_file.h"
-#include "marble_maze/simulation.h"
+#include "marble_maze/session.h"
 #include "marble_maze/tilt_schedule.h"
 
 namespace marble_maze {
@@ -33,6 +34,9 @@ struct Options {
   std::string events;  // events CSV
   int every = 1;
   bool quiet = false;
+  double tilt_timeout =
+      0;                  // s without a command before the board levels (the node's ~tilt_timeout)
+  double auto_reset = 0;  // s after a hole or the goal before the marble is put back
   bool help = false;
   std::string bag;     // a recorded session to re-simulate
   bool check = false;  // and compare with its recorded marble_state
@@ -47,23 +51,22 @@ void printHelp(std::ostream& out);
 /// The options of `args` (the program's name left out); throws UsageError.
 Options parseOptions(const std::vector<std::string>& args);
 
-/// The scene and the simulation the options ask for (not for --bag); throws UsageError.
+/// The scene and the session the options ask for (not for --bag), played a step at a time by
+/// playStep; throws UsageError.
 struct Run {
   Scene scene;
-  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<Session> session;
+  std::size_t tilt_row = 0;  ///< where the last step's tilt was found in the tilt program
 };
 Run prepare(const Options& o);
 
-/// The tilt the run sets before step n (1, 2, ...) of `step` seconds: the programme's value at
-/// the step's start, as a controller sends it then and the node takes a command at the first
-/// step that starts at or after its stamp (taken at the step's end, the board would act on a
-/// value a step before a controller could send it). Substeps refine the physics between
-/// commands, not the programme. (`row`: where the last step's tilt was found in the
-/// programme, which the steps read forward.)
-inline TiltSchedule::Point tiltBeforeStep(const Options& o, std::uint64_t n, double step,
-                                          std::size_t* row) {
-  return o.tilt.at(static_cast<double>(n - 1) * step, row);
-}
+/// Takes the run's next step as the node takes it from a controller playing the tilt program:
+/// while the program runs, a command with its value at the step's start (as a controller sends
+/// it then, and the node applies a command at the first step that starts at or after its
+/// stamp); after its last row, none, so that the board holds that tilt until the tilt timeout
+/// levels it. The session's queue, timeouts and auto reset do the rest, as the node's do.
+/// Substeps refine the physics between commands, not the program.
+void playStep(const Options& o, Run* run);
 
 }  // namespace runner
 }  // namespace marble_maze

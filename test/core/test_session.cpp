@@ -413,7 +413,7 @@ TEST(Session, ASavedStateRestoredElsewhereGoesOnBitForBit) {
 
 TEST(Session, ARestoredBoardMovesAsTheRestoringSessionsServoAndLimitsSay) {
   // A state saved under one servo and restored under another (a replay with other physics:
-  // simulate --bag --set ...) moves as the restoring session's servo moves it, to targets within
+  // resimulate --bag --set ...) moves as the restoring session's servo moves it, to targets within
   // its tilt limit and at rates within its rate limit, not as the saved session's did.
   Params slow;
   slow.tilt_rate_limit = 0;

@@ -1,4 +1,4 @@
-// The headless runner as a user calls it.
+// The runners as a user calls them: simulate on the core, and resimulate for a recorded session.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -18,14 +18,21 @@ struct Result {
   std::string output;  // standard output and error
 };
 
-Result runSimulate(const std::string& args) {
-  const std::string command = std::string(SIMULATE_PATH) + " " + args + " 2>&1";
+Result runProgram(const std::string& program, const std::string& args) {
+  const std::string command = program + " " + args + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   char buffer[4096];
   while (std::fgets(buffer, sizeof buffer, pipe)) output += buffer;
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+Result runSimulate(const std::string& args) {
+  return runProgram(SIMULATE_PATH, args);
+}
+Result runResimulate(const std::string& args) {
+  return runProgram(RESIMULATE_PATH, args);
 }
 
 std::string readFile(const std::string& path) {
@@ -137,6 +144,62 @@ TEST(SimulateCli, AnInitialTiltInTheMazeFileOrASetOneOutranksTheProgramsFirstTil
   EXPECT_EQ(firstRoll("--tilt 0.03,0"), 0.03);  // else the program's first tilt
 }
 
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+/// Column `column` of the trajectory row at time t (the CSV written with --out).
+double trajectoryAt(const std::string& csv, double t, int column) {
+  for (const std::string& line : linesOf(csv)) {
+    std::vector<std::string> fields;
+    std::istringstream row(line);
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    if (fields.size() == 14 && fields[0] != "t" && std::abs(std::stod(fields[0]) - t) < 1e-9)
+      return std::stod(fields[column]);
+  }
+  ADD_FAILURE() << "no row at t = " << t;
+  return 0;
+}
+
+TEST(SimulateCli, AfterTheProgramTheTiltTimeoutLevelsTheBoardAsTheNodeDoes) {
+  // The program's last row is at 0.2 s: its last command acts at the step starting then, and the
+  // board holds it until --tilt-timeout has passed since (0.5 s), then levels under its servo.
+  const std::string program = tempPath("short_program.csv");
+  const std::string csv = tempPath("timeout.csv");
+  std::ofstream(program) << "t,roll,pitch\n0,0.1,0\n0.2,0.1,0\n";
+  const int kRoll = 10;
+  ASSERT_EQ(runSimulate("--tilt-csv " + program + " --tilt-timeout 0.3 --duration 1 --quiet" +
+                        " --out " + csv)
+                .status,
+            0);
+  const std::string timed = readFile(csv);
+  EXPECT_EQ(trajectoryAt(timed, 0.5, kRoll), 0.1);  // held to the step
+  EXPECT_LT(trajectoryAt(timed, 0.502, kRoll), 0.1);
+  EXPECT_LT(trajectoryAt(timed, 1.0, kRoll), 0.1 * std::exp(-0.4 / 0.05) * 1.5);  // the servo's lag
+  ASSERT_EQ(runSimulate("--tilt-csv " + program + " --duration 1 --quiet --out " + csv).status, 0);
+  EXPECT_EQ(trajectoryAt(readFile(csv), 1.0, kRoll), 0.1);  // no timeout: the tilt holds
+}
+
+TEST(SimulateCli, TheAutoResetPutsTheMarbleBackAfterAHoleAsTheNodeDoes) {
+  // The board lowered towards +x: the marble rolls from the start into the hole beside it.
+  const std::string maze = tempPath("hole_beside.yaml");
+  std::ofstream(maze) << "grid:\n  x: [0.005, 0.02]\n  y: [0.005, 0.02]\n  z: [0.005, 0.012]\n"
+                         "layout: |\n  +-+-+-+\n  |S O G|\n  +-+-+-+\n";
+  const auto holes = [&](const std::string& flags) {
+    const Result r = runSimulate("--maze " + maze + " --tilt 0,0.05 --duration 3 --quiet " +
+                                 "--events - " + flags);
+    EXPECT_EQ(r.status, 0) << r.output;
+    int count = 0;
+    for (const std::string& line : linesOf(r.output)) count += line.find(",hole,") != line.npos;
+    return count;
+  };
+  EXPECT_EQ(holes(""), 1);                  // held in the hole
+  EXPECT_GE(holes("--auto-reset 0.5"), 2);  // put back on the start, into the hole again
+}
+
 TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
   // (Outside the working directory: should the refusal fail, nothing is written there.)
   const std::string csv = tempPath("same.csv");
@@ -171,9 +234,11 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--maze /tmp", "/tmp: is a directory"},
       {"--maze clasic", "clasic: neither a built-in maze (classic, prototype) nor a file"},
       {"--quite", "unknown option '--quite'"},  // last, with no value after it
-      {"--bag session.bag --maze classic", "--maze: not with --bag, whose session sets it"},
-      {"--tilt 0,0 --bag session.bag", "--tilt: not with --bag"},
-      {"--bag session.bag --duration 3", "--duration: not with --bag"},
+      {"--tilt-timeout -1", "--tilt-timeout: expected 0..1e6 seconds, got '-1'"},
+      {"--auto-reset soon", "--auto-reset: expected a number"},
+      // A recorded session is resimulate's.
+      {"--bag session.bag", "--bag: a recorded session is re-simulated by resimulate"},
+      {"--check", "--check: only with resimulate --bag"},
       // Two CSVs in one file would garble both; a third tilt value is not silently dropped.
       {"--out " + csv + " --events " + csv, "--events: '" + csv + "' is --out's too"},
       {"--out - --events -", "--events: '-' is --out's too"},
@@ -184,15 +249,36 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--maze classic --maze prototype", "--maze: given twice ('prototype' after the first)"},
       {"--duration 1 --duration 2", "--duration: given twice ('2' after the first)"},
       {"--tilt 0.1,0 --tilt-csv /nonexistent.csv", "--tilt-csv: not with --tilt"},
-      // Other physics make other states: --check would only fail, or find nothing to compare.
-      {"--bag session.bag --check --set preset=fast",
-       "--check: not with --set (preset): the recorded states are those of the recorded physics"},
   };
   for (const auto& [args, message] : cases) {
     const Result r = runSimulate(args);
     EXPECT_EQ(r.status, 2) << args;
     EXPECT_NE(r.output.find(message), std::string::npos) << args << " -> " << r.output;
   }
+}
+
+TEST(ResimulateCli, WrongFlagsExitWithTwoAndSayWhy) {
+  // (The bag's own refusals, a bag without states or inputs, are test_record_replay.py's.)
+  const std::pair<std::string, std::string> cases[] = {
+      {"", "resimulate: --bag: required"},
+      {"--check", "--bag: required"},
+      {"--bag session.bag --maze classic", "--maze: not with --bag, whose session sets it"},
+      {"--tilt 0,0 --bag session.bag", "--tilt: not with --bag"},
+      {"--bag session.bag --duration 3", "--duration: not with --bag"},
+      {"--bag session.bag --auto-reset 2", "--auto-reset: not with --bag"},
+      {"--bag /nonexistent/session.bag", "--bag: "},
+      // Other physics make other states: --check would only fail, or find nothing to compare.
+      {"--bag session.bag --check --set preset=fast",
+       "--check: not with --set (preset): the recorded states are those of the recorded physics"},
+  };
+  for (const auto& [args, message] : cases) {
+    const Result r = runResimulate(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << " -> " << r.output;
+  }
+  const Result help = runResimulate("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.output.find("Usage: resimulate --bag FILE"), std::string::npos);
 }
 
 TEST(SimulateCli, ARefusalNamesTheSetOnlyWhenASetGaveTheValue) {

@@ -1,10 +1,10 @@
-"""Record and replay, end to end, as a user runs them (record.launch, replay.launch, simulate --bag,
+"""Record and replay, end to end, as a user runs them (record.launch, replay.launch, resimulate,
 rosbag play), each on a master of its own:
 
   1. record about 10 s of a session the autopilot plays, the recorder started 3 s after the node,
      with a reset and a pause (and 100 steps taken while paused) in it, the board away from the
      world's origin (board_position), so that states are compared in the world as published;
-  2. re-simulate it offline (simulate --bag --check): every recorded state bit for bit;
+  2. re-simulate it offline (resimulate --bag --check): every recorded state bit for bit;
   3. replay it live with replay.launch at 1 and 4 times real time, recording what it publishes:
      every state at the original's stamps is the original's bit for bit; the only recorded states
      without a counterpart are those published while paused (stamped with the time that passed);
@@ -56,7 +56,7 @@ BOARD = (0.3, -0.2, 0.75)
 REPO = os.path.realpath(os.path.join(HERE, "..", ".."))
 # The workspace make builds (scripts/workspace.sh): beside the clone, named after it.
 WS = os.environ.get("MARBLE_MAZE_WS", REPO + ".ws")
-SIMULATE = os.path.join(WS, "devel", "lib", "marble_maze", "simulate")
+RESIMULATE = os.path.join(WS, "devel", "lib", "marble_maze", "resimulate")
 # The session's length from the recorder's start, s (the node runs 3 s before it).
 SESSION = 10.0
 LONG = os.environ.get("MARBLE_MAZE_TESTS") == "long"
@@ -182,7 +182,7 @@ class RecordReplayTest(unittest.TestCase):
         recorded_states = states(self.session)
         first = recorded_states[0].position
         self.assertLess(math.dist((first.x, first.y, first.z), BOARD), 0.2)
-        run = subprocess.run([SIMULATE, "--bag", self.session, "--check"], capture_output=True,
+        run = subprocess.run([RESIMULATE, "--bag", self.session, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
@@ -190,7 +190,7 @@ class RecordReplayTest(unittest.TestCase):
         self.assertGreater(compared, 300)
         # Its events, from the snapshot it starts at (the first that holds every recorded input)
         # to the last state or input recorded, are the recorded ones, each number exact.
-        run = subprocess.run([SIMULATE, "--bag", self.session, "--events", "-", "--quiet"],
+        run = subprocess.run([RESIMULATE, "--bag", self.session, "--events", "-", "--quiet"],
                              capture_output=True, text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stderr)
         rows = run.stdout.splitlines()
@@ -255,13 +255,13 @@ class RecordReplayTest(unittest.TestCase):
                 self.assertIn(active + " is there: a recording that did not end", log.read())
         finally:
             master.close()
-        run = subprocess.run([SIMULATE, "--bag", active], capture_output=True, text=True,
+        run = subprocess.run([RESIMULATE, "--bag", active], capture_output=True, text=True,
                              timeout=60)
         self.assertNotEqual(run.returncode, 0)
         self.assertIn("rosbag reindex " + active, run.stderr)
         subprocess.run(["rosbag", "reindex", active], capture_output=True, check=True,
                        cwd=self.dir, timeout=60)
-        run = subprocess.run([SIMULATE, "--bag", active, "--check"], capture_output=True,
+        run = subprocess.run([RESIMULATE, "--bag", active, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         compared = int(re.search(r"(\d+) recorded states compared", run.stdout).group(1))
@@ -288,7 +288,7 @@ class RecordReplayTest(unittest.TestCase):
             """(t, roll, pitch) of each row of a re-simulation, and when its marble first
             finished (the session then levels the board whatever the inputs say)."""
             events = os.path.join(self.dir, "events.csv")
-            run = subprocess.run([SIMULATE, "--bag", self.session, "--out", "-", "--quiet",
+            run = subprocess.run([RESIMULATE, "--bag", self.session, "--out", "-", "--quiet",
                                   "--events", events] + list(flags),
                                  capture_output=True, text=True, timeout=120)
             self.assertEqual(run.returncode, 0, run.stderr)
@@ -326,11 +326,11 @@ class RecordReplayTest(unittest.TestCase):
                     a.write(topic, m, t)
                 if m._type != "marble_maze/SimInput":
                     b.write(topic, m, t)
-        run = subprocess.run([SIMULATE, "--bag", no_states, "--check"], capture_output=True,
+        run = subprocess.run([RESIMULATE, "--bag", no_states, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 1, run.stdout + run.stderr)
         self.assertIn("holds no marble_state", run.stderr)
-        run = subprocess.run([SIMULATE, "--bag", no_inputs], capture_output=True, text=True,
+        run = subprocess.run([RESIMULATE, "--bag", no_inputs], capture_output=True, text=True,
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("no marble_maze/SimInput (inputs)", run.stderr)
@@ -345,7 +345,7 @@ class RecordReplayTest(unittest.TestCase):
                     struct.pack_into("<i", state, 108, 4)
                     m.state = bytes(state)
                 out.write(topic, m, t)
-        run = subprocess.run([SIMULATE, "--bag", bad_snapshot], capture_output=True, text=True,
+        run = subprocess.run([RESIMULATE, "--bag", bad_snapshot], capture_output=True, text=True,
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("--bag: snapshot: the marble's phase 4 is none of free (0)", run.stderr)
@@ -358,15 +358,15 @@ class RecordReplayTest(unittest.TestCase):
                     self.assertIn("restitution=", m.params)
                     m.params = re.sub(r"restitution=[^\n]*", "restitution=2", m.params)
                 out.write(topic, m, t)
-        run = subprocess.run([SIMULATE, "--bag", bad_params], capture_output=True, text=True,
+        run = subprocess.run([RESIMULATE, "--bag", bad_params], capture_output=True, text=True,
                              timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
-        self.assertIn("simulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
+        self.assertIn("resimulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
         # (and so with another value set over the bag's)
-        run = subprocess.run([SIMULATE, "--bag", bad_params, "--set", "step=0.002"],
+        run = subprocess.run([RESIMULATE, "--bag", bad_params, "--set", "step=0.002"],
                              capture_output=True, text=True, timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
-        self.assertIn("simulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
+        self.assertIn("resimulate: --bag: restitution: 2 is out of range [0, 1]", run.stderr)
         # The first snapshot recorded before the scene (two latched messages of one instant come
         # in either order, as a lockstep node's do): the replay starts from the next snapshot.
         swapped = os.path.join(self.dir, "snapshot_first.bag")
@@ -378,7 +378,7 @@ class RecordReplayTest(unittest.TestCase):
         with rosbag.Bag(swapped, "w") as out:
             for k, (topic, m, t) in enumerate(messages):
                 out.write(topic, m, scene_at - rospy.Duration(0, 1) if k == first else t)
-        run = subprocess.run([SIMULATE, "--bag", swapped, "--check"], capture_output=True,
+        run = subprocess.run([RESIMULATE, "--bag", swapped, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)
@@ -390,7 +390,7 @@ class RecordReplayTest(unittest.TestCase):
             with rosbag.Bag(bag, "w") as out:
                 for k, (topic, m, t) in enumerate(messages):
                     out.write(topic, m, at if k == first else t)
-            run = subprocess.run([SIMULATE, "--bag", bag, "--check"], capture_output=True,
+            run = subprocess.run([RESIMULATE, "--bag", bag, "--check"], capture_output=True,
                                  text=True, timeout=120)
             self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
             compared.append(re.search(r"(\d+) recorded states compared: all identical",
@@ -406,7 +406,7 @@ class RecordReplayTest(unittest.TestCase):
                 if m._type == "marble_maze/SimInput" and m.index >= middle:
                     m.header.stamp -= rospy.Duration(5)
                 out.write(topic, m, t)
-        run = subprocess.run([SIMULATE, "--bag", looped, "--check"], capture_output=True,
+        run = subprocess.run([RESIMULATE, "--bag", looped, "--check"], capture_output=True,
                              text=True, timeout=120)
         self.assertEqual(run.returncode, 2, run.stdout + run.stderr)
         self.assertIn("ROS time went back while it was recorded (input %d" % middle, run.stderr)
@@ -649,7 +649,7 @@ class RecordReplayTest(unittest.TestCase):
         seqs = [m.header.seq for m in states(bag)]
         self.assertGreaterEqual(len(seqs), 1000)
         self.assertEqual(seqs, list(range(seqs[0], seqs[0] + len(seqs))))
-        run = subprocess.run([SIMULATE, "--bag", bag, "--check"], capture_output=True, text=True,
+        run = subprocess.run([RESIMULATE, "--bag", bag, "--check"], capture_output=True, text=True,
                              timeout=120)
         self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
         self.assertIn("all identical", run.stdout)

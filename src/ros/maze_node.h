@@ -1,21 +1,12 @@
 // marble_maze_node: the core's session behind ROS topics, services, parameters, tf and markers.
 // It wires small units together (settings, inputs, outputs, services, reconfigure, health) and
-// keeps the one thing that is ROS's alone: how ROS time and the simulation's steps relate, in
-// one of three modes:
-//  - following ROS time (the default): the steps due are the ROS time elapsed (wall time, or
-//    /clock under /use_sim_time), checked at ~update_rate;
-//  - ~clock: the node owns /clock and runs as fast as it can (~real_time_factor 0) or at a
-//    multiple of real time;
-//  - ~lockstep: each tilt command advances one control period, then the state is published.
+// the time policy chosen at start (time_policy.h), which decides when the session advances.
 #pragma once
 
 #include <ros/ros.h>
-#include <rosgraph_msgs/Clock.h>
 
-#include <cmath>
 #include <functional>
 #include <memory>
-#include <set>
 #include <string>
 
 #include "health.h"
@@ -27,53 +18,32 @@
 #include "sim_services.h"
 #include "state_output.h"
 #include "tilt_input.h"
+#include "time_policy.h"
 
 namespace marble_maze_ros {
 
 class MazeNode {
  public:
   /// Reads the parameters and starts; throws std::runtime_error naming a bad parameter.
-  MazeNode(ros::NodeHandle nh, ros::NodeHandle pnh);
-  /// Leaves the private parameters as they were given: the values written back go, so that a
-  /// node started later on the same master (rosrun) does not take them for its user's.
-  ~MazeNode();
+  MazeNode(ros::NodeHandle nh, const ros::NodeHandle& pnh);
   MazeNode(const MazeNode&) = delete;
   MazeNode& operator=(const MazeNode&) = delete;
 
  private:
-  // Time.
-  void onTimer(const ros::TimerEvent&);        // following ROS time
-  void onFreeRun(const ros::WallTimerEvent&);  // ~clock
-  void runSteps(std::uint64_t count);
-  void publishDue(bool force);
+  // What the time policy drives.
+  void runSteps(std::uint64_t count, bool publish_each);
+  void publishState(const ros::Time& stamp, bool force);
   void publishNow();
-  ros::Time stampNow() const;
-  double simTime() const { return session_->simulation().time(); }
-  double step() const { return session_->simulation().params().step; }
-  void publishClock();
+  void reanchor(const ros::Time& origin);
+  void restart(const ros::Time& now);
+  ros::Time stampNow() const { return clock_.stampOfStep(session_->steps()); }
+  std::int64_t stepNs() const;
   /// What /diagnostics reports, as it stands now.
   HealthFigures healthFigures() const;
-  /// Ties the current step to ROS time `origin`, and says so on `inputs`.
-  void reanchor(const ros::Time& origin);
-  /// Runs `change` (another maze, other physics); a step of another length from then on is
-  /// re-anchored where the session stood, so that its steps keep to ROS time's rate, and the
-  /// commands stamped ahead go to their stamps' steps of that length.
-  void keepingTime(const std::function<void()>& change);
-  std::int64_t stepNs() const { return std::llround(step() * 1e9); }
-  /// How many steps one callback may take, following ROS time or a real-time factor, at the
-  /// substeps in force: more are skipped, with a warning.
-  double mostStepsPerCall() const;
   /// An input of a service, at the current step, and the state after it.
   void logInput(std::uint8_t kind, const marble_maze::SimInput& input = marble_maze::SimInput());
-  std::uint64_t stepsPer(double seconds) const;
-  /// Warns when ~lockstep is not a whole number of steps (each command then advances the
-  /// nearest whole number of them).
-  void warnIfLockstepRounds() const;
 
-  // Inputs and services.
-  /// Queues a command at the step its stamp falls on; returns how long (s) it is held.
-  double onCommand(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind, double roll,
-                   double pitch);
+  // Services.
   std::string reset();
   std::string pause();
   std::string resume();
@@ -83,36 +53,22 @@ class MazeNode {
   std::string load(const std::string& maze);
   std::string reconfigure(const Reconfigure::Changes& changes);
   std::string valueOf(const std::string& key) const;
+  /// After the maze or the physics changed: the values written back, the policy told.
+  void changed();
 
-  ros::NodeHandle pnh_;
-  /// Writes the values in force back (writeBack), remembering the keys for the destructor.
-  void writeBackSettings();
-
-  XmlRpc::XmlRpcValue given_;  // the private parameters as given, before any was written back
-  bool any_given_ = false;
-  std::set<std::string> written_;  // the keys written back
+  WrittenBack written_;  // first made, last gone: the parameters left as they were given
   NodeSettings settings_;
   std::unique_ptr<marble_maze::Session> session_;
   SimClock clock_;
+  std::unique_ptr<SessionLog> log_;
   std::unique_ptr<StateOutput> out_;
+  std::unique_ptr<TimePolicy> time_;
   std::unique_ptr<TiltInput> input_;
   std::unique_ptr<SimServices> services_;
   std::unique_ptr<Reconfigure> reconfigure_;
   std::unique_ptr<Health> health_;
-  std::unique_ptr<SessionLog> log_;
   std::string maze_text_, maze_source_;  // the maze file's text, for the scene on `scene`
   bool snapshotted_ = false;
-  ros::Publisher clock_pub_;
-  ros::Timer timer_;
-  ros::WallTimer free_run_;
-  ros::WallTimer clock_said_;   // with ~clock or ~lockstep: /clock said while it stands
-  ros::WallTimer clock_check_;  // says once if a simulated clock has not come 2 s after start
-
-  ros::Time last_now_;     // the latest ROS time seen (a clock going back is followed)
-  ros::Time last_frozen_;  // while paused: when the frozen state was last published
-  std::uint64_t skipped_steps_ = 0;
-  ros::WallTime free_run_start_;
-  double free_run_start_sim_ = 0;
 };
 
 }  // namespace marble_maze_ros

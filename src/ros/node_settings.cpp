@@ -1,5 +1,7 @@
 #include "node_settings.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <iomanip>
 #include <set>
 #include <sstream>
@@ -138,7 +140,8 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   s.marble_frame = readText(pnh, "marble_frame", s.marble_frame);
   checkFrames(pnh, s);
   s.own_clock = readFlag(pnh, "clock", s.own_clock);
-  s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor, 0.0, 1e6);
+  s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor,
+                                  realTimeFactorKey().min, realTimeFactorKey().max);
   // (A period is taken in one callback: a longer one would hold the node up. The node also
   // bounds its count of steps, whatever the step.)
   s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 60.0);
@@ -221,6 +224,80 @@ std::vector<std::string> writeBack(const ros::NodeHandle& pnh, const NodeSetting
       put(info.key, text);
   }
   return keys;
+}
+
+const mm::ParamInfo& realTimeFactorKey() {
+  static const mm::ParamInfo key{"real_time_factor",
+                                 "",
+                                 "with ~clock: times real time to run at, 0 = as fast as it can",
+                                 mm::ParamInfo::Type::Number,
+                                 0,
+                                 1e6,
+                                 {},
+                                 true};
+  return key;
+}
+
+double parseRealTimeFactor(const std::string& text) {
+  const mm::ParamInfo& key = realTimeFactorKey();
+  double value = 0;
+  if (!mm::parseFiniteNumber(text, &value))
+    throw mm::ParamError(key.key + ": " + mm::whyNotANumber(text));
+  if (value < key.min || value > key.max)
+    throw mm::ParamError(mm::outOfRangeText(key.key, value, key.min, key.max));
+  return value;
+}
+
+WrittenBack::WrittenBack(const ros::NodeHandle& pnh) : pnh_(pnh) {
+  any_given_ = ros::param::get(pnh.getNamespace(), given_);
+}
+
+WrittenBack::~WrittenBack() {
+  // Only the keys it wrote: each back to its given value, or gone (what others set stays).
+  for (const std::string& key : written_) {
+    if (any_given_ && given_.getType() == XmlRpc::XmlRpcValue::TypeStruct && given_.hasMember(key))
+      pnh_.setParam(key, given_[key]);
+    else
+      pnh_.deleteParam(key);
+  }
+}
+
+void WrittenBack::write(const NodeSettings& settings, const mm::Params& params) {
+  for (const std::string& key : writeBack(pnh_, settings, params)) written_.insert(key);
+}
+
+void keepLiveChanges(NodeSettings* settings,
+                     const std::vector<std::pair<std::string, std::string>>& changes) {
+  auto& overrides = settings->overrides;
+  for (const auto& [key, value] : changes) {
+    if (key == realTimeFactorKey().key) continue;
+    overrides.erase(std::remove_if(overrides.begin(), overrides.end(),
+                                   [&key = key](const auto& o) { return o.first == key; }),
+                    overrides.end());
+    overrides.emplace_back(key, value);
+  }
+}
+
+std::unique_ptr<mm::Session> makeSession(const ros::NodeHandle& pnh, const mm::Scene& scene,
+                                         const NodeSettings& settings) {
+  try {
+    return std::make_unique<mm::Session>(scene, settings.session);
+  } catch (const mm::MazeFileError& e) {  // the marble where the maze file cannot have it
+    throw std::runtime_error(pnh.resolveName("maze") + ": " + e.what());
+  } catch (const mm::ParamError& e) {  // the marble where it cannot be: the key is ours
+    throw std::runtime_error(pnh.getNamespace() + "/" + e.what());
+  }
+}
+
+std::string describeRun(const mm::Simulation& sim) {
+  const mm::Params& p = sim.params();
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "maze '%s' (%d x %d x %d tiles), model %s, integrator %s, step %g s x %d substeps",
+                sim.maze().name().c_str(), sim.maze().size().x(), sim.maze().size().y(),
+                sim.maze().size().z(), mm::getParam(p, "model").c_str(),
+                mm::getParam(p, "integrator").c_str(), p.step, p.substeps);
+  return text;
 }
 
 }  // namespace marble_maze_ros

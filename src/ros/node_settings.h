@@ -6,6 +6,8 @@
 #include <ros/ros.h>
 
 #include <cstdint>
+#include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,5 +71,44 @@ std::string whyNotRunnable(const NodeSettings& settings, const marble_maze::Para
 /// returns the keys it set.
 std::vector<std::string> writeBack(const ros::NodeHandle& pnh, const NodeSettings& settings,
                                    const marble_maze::Params& params);
+
+/// Keeps the core's keys of `changes` (made live) among the settings' overrides, so that a maze
+/// loaded later takes them over its file's physics, as it takes those the node started with.
+void keepLiveChanges(NodeSettings* settings,
+                     const std::vector<std::pair<std::string, std::string>>& changes);
+
+/// The session of `scene` under these settings; throws std::runtime_error naming the parameter
+/// (the maze, or the key) when the marble cannot start where the scene puts it.
+std::unique_ptr<marble_maze::Session> makeSession(const ros::NodeHandle& pnh,
+                                                  const marble_maze::Scene& scene,
+                                                  const NodeSettings& settings);
+
+/// "maze 'classic' (21 x 17 x 2 tiles), model rolling, integrator velocity_verlet, step 0.001 s
+/// x 1 substeps": what runs, for the node's first log line.
+std::string describeRun(const marble_maze::Simulation& sim);
+
+/// The node's own key that changes live beside the core's (dynamic_reconfigure shows it with
+/// theirs): its range, read at start and checked at each change, lives here alone.
+const marble_maze::ParamInfo& realTimeFactorKey();
+/// ~real_time_factor's value in `text`; throws marble_maze::ParamError naming the key.
+double parseRealTimeFactor(const std::string& text);
+
+/// Writes the values in force back to the parameter server (writeBack), and when destroyed
+/// leaves the private parameters as they were given: each key it wrote back to its given value,
+/// or gone, so that a node started later on the same master does not take them for its user's.
+class WrittenBack {
+ public:
+  explicit WrittenBack(const ros::NodeHandle& pnh);
+  ~WrittenBack();
+  WrittenBack(const WrittenBack&) = delete;
+  WrittenBack& operator=(const WrittenBack&) = delete;
+  void write(const NodeSettings& settings, const marble_maze::Params& params);
+
+ private:
+  ros::NodeHandle pnh_;
+  XmlRpc::XmlRpcValue given_;  // the private parameters as given, before any was written back
+  bool any_given_ = false;
+  std::set<std::string> written_;
+};
 
 }  // namespace marble_maze_ros

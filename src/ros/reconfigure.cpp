@@ -52,7 +52,7 @@ void add(const mm::ParamInfo& info, const std::string& value, dynamic_reconfigur
 
 }  // namespace
 
-Reconfigure::Reconfigure(ros::NodeHandle& pnh, std::vector<mm::ParamInfo> extra,
+Reconfigure::Reconfigure(ros::NodeHandle pnh, std::vector<mm::ParamInfo> extra,
                          std::function<std::string(const Changes&)> apply,
                          std::function<std::string(const std::string&)> current)
     : apply_(std::move(apply)), current_(std::move(current)) {

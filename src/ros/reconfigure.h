@@ -23,7 +23,7 @@ class Reconfigure {
   using Changes = std::vector<std::pair<std::string, std::string>>;  // key, value as text
   /// `apply` makes the changes (all or none) and returns "", or why not; `current` gives a
   /// key's value in force as text. `extra` are keys of the node's own, described like the core's.
-  Reconfigure(ros::NodeHandle& pnh, std::vector<marble_maze::ParamInfo> extra,
+  Reconfigure(ros::NodeHandle pnh, std::vector<marble_maze::ParamInfo> extra,
               std::function<std::string(const Changes&)> apply,
               std::function<std::string(const std::string&)> current);
 

@@ -37,6 +37,18 @@ void SessionLog::input(marble_maze::SimInput input, std::uint8_t kind, std::uint
   inputs_pub_.publish(input);
 }
 
+void SessionLog::applied(const marble_maze::Session& session, const ros::Time& stamp) {
+  for (const marble_maze::TiltCommand& c : session.applied()) {
+    marble_maze::SimInput msg;
+    msg.roll = c.roll;
+    msg.pitch = c.pitch;
+    input(msg,
+          c.kind == marble_maze::TiltCommand::Kind::Angles ? marble_maze::SimInput::TILT
+                                                           : marble_maze::SimInput::TILT_RATE,
+          c.step, stamp);
+  }
+}
+
 void SessionLog::anchor(const SimClock& clock, std::uint64_t step, const ros::Time& stamp) {
   marble_maze::SimInput msg;
   msg.anchor_stamp = clock.origin();

@@ -25,6 +25,9 @@ class SessionLog {
   /// and stamp of `input` and publishes it.
   void input(marble_maze::SimInput input, std::uint8_t kind, std::uint64_t step,
              const ros::Time& stamp);
+  /// The tilt commands the session applied in its last run, each at its step, at ROS time
+  /// `stamp` (the step's start).
+  void applied(const marble_maze::Session& session, const ros::Time& stamp);
   void anchor(const SimClock& clock, std::uint64_t step, const ros::Time& stamp);
   void snapshot(const marble_maze::Session& session, const SimClock& clock, const ros::Time& stamp);
 

@@ -121,7 +121,7 @@ void StateOutput::clearStamps() {
 }
 
 void StateOutput::publishDue(const mm::Session& session, const ros::Time& stamp,
-                             std::int64_t step_ns, bool force) {
+                             std::int64_t step_ns, bool force, bool repeats_stamps) {
   const mm::Simulation& sim = session.simulation();
   // Whether a multiple of the period falls in this step: (stamp - step, stamp].
   const auto due = [&](double rate) {
@@ -129,10 +129,10 @@ void StateOutput::publishDue(const mm::Session& session, const ros::Time& stamp,
     const auto now = static_cast<std::int64_t>(stamp.toNSec());
     return now / period != (now - step_ns) / period;
   };
-  // In lockstep time moves only with commands: a change between them (a reset, a place, a load)
-  // is shown at once, at the stamp of the state before it (tf, whose stamps must increase,
-  // follows with the next period).
-  const bool again = force && settings_.lockstep > 0 && stamp == last_state_stamp_;
+  // Where time moves only with commands (lockstep), a change between them (a reset, a place, a
+  // load) is shown at once, at the stamp of the state before it (tf, whose stamps must
+  // increase, follows with the next period).
+  const bool again = force && repeats_stamps && stamp == last_state_stamp_;
   if (force || state_pending_ || due(settings_.publish_rate)) {
     state_pending_ = stamp <= last_state_stamp_ && !again;
     if (!state_pending_) {

@@ -36,11 +36,11 @@ class StateOutput {
   /// The state and the markers when due, at `stamp` (the step's, steps lasting `step_ns`): at
   /// the first step at or after each multiple of their period in ROS time (`force`: now), each
   /// stamp later than the one before. A state asked for at an instant already published (a reset
-  /// just after a step) goes out with the next step, or in lockstep at once with the same stamp.
-  /// The same steps publish in a session and in its replay (but for those lockstep states shown
-  /// at once, which a replay, stepping on, does not repeat).
+  /// just after a step) goes out with the next step, or, with `repeats_stamps` (lockstep), at
+  /// once with the same stamp. The same steps publish in a session and in its replay (but for
+  /// those states shown at once, which a replay, stepping on, does not repeat).
   void publishDue(const marble_maze::Session& session, const ros::Time& stamp, std::int64_t step_ns,
-                  bool force);
+                  bool force, bool repeats_stamps = false);
   /// Whether marble_state has a subscriber connected.
   bool stateSubscribed() const { return state_pub_.getNumSubscribers() > 0; }
   /// ROS time went back: stamps may start again from there.

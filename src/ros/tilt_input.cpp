@@ -90,4 +90,10 @@ void TiltInput::pass(const std::string& topic, const std_msgs::Header& header,
         topic.c_str(), header.stamp.toSec(), held);
 }
 
+void TiltInput::fillHealth(HealthFigures* f) const {
+  f->commands = received_;
+  f->lost = lost_total_;
+  f->since_command = last_.isZero() ? -1 : (ros::Time::now() - last_).toSec();
+}
+
 }  // namespace marble_maze_ros

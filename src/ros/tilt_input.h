@@ -12,6 +12,7 @@
 #include <functional>
 #include <string>
 
+#include "health.h"
 #include "marble_maze/BoardTilt.h"
 #include "marble_maze/BoardTiltRate.h"
 #include "marble_maze/params.h"
@@ -38,6 +39,8 @@ class TiltInput {
   /// Commands lost on the way since the start (gaps in their publishers' header.seq).
   std::uint64_t lost() const { return lost_total_; }
   ros::Time last() const { return last_; }
+  /// The commands' figures of /diagnostics: received, lost, seconds since the last.
+  void fillHealth(HealthFigures* figures) const;
 
  private:
   void onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& event);

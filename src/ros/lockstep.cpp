@@ -1,0 +1,53 @@
+#include "lockstep.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace marble_maze_ros {
+namespace mm = marble_maze;
+
+void Lockstep::start(ros::NodeHandle& nh) {
+  warnIfPeriodRounds();
+  ownClock(nh);
+}
+
+std::uint64_t Lockstep::stepsPerPeriod() const {
+  return std::max<std::uint64_t>(1, std::llround(c_.settings->lockstep / step()));
+}
+
+void Lockstep::warnIfPeriodRounds() const {
+  const double period = c_.settings->lockstep;
+  const double taken = static_cast<double>(stepsPerPeriod()) * step();
+  if (std::abs(taken - period) > 1e-9 * period)
+    ROS_WARN(
+        "marble_maze: ~lockstep: %g s is not a whole number of steps of %g s; each command "
+        "advances %g s",
+        period, step(), taken);
+}
+
+double Lockstep::command(const ros::Time& /*stamp*/, mm::TiltCommand::Kind kind, double roll,
+                         double pitch) {
+  // The command acts at once, for one control period (the period, not its stamp, is the time
+  // it takes). Paused, it waits for the step service's next step, as on any clock (or is
+  // replaced by the first command after resume, which acts at the same step).
+  c_.session->command({c_.session->steps(), kind, roll, pitch});
+  if (!c_.session->paused()) {  // (paused, no step is taken and no state comes)
+    c_.run_steps(stepsPerPeriod(), false);
+    c_.publish_state(stateStamp(), true);
+    sayClock();
+  }
+  return 0;
+}
+
+void Lockstep::refused() {
+  // Answered too, by the state as it stands (with the stamp of the one before it: nothing
+  // moved), so that the agent's loop goes on.
+  if (!c_.session->paused()) c_.publish_state(stateStamp(), true);
+}
+
+void Lockstep::fillHealth(HealthFigures* f) const {
+  f->aimed_factor = 0;
+  f->lockstep = true;
+}
+
+}  // namespace marble_maze_ros

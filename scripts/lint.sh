@@ -19,8 +19,11 @@ run() {
   fi
 }
 
-# clang-tidy reads the flags of the workspace's build (scripts/build.sh exports them); its
-# own summary lines ("N warnings generated") are noise, its findings name file:line:col.
+# clang-tidy reads the flags of the workspace's build (scripts/build.sh exports them), each
+# file named as the build names it (through the workspace's link to this clone); its own summary
+# lines ("N warnings generated") are noise, its findings name file:line:col.
+# (The functions below are called through `run`.)
+# shellcheck disable=SC2317
 tidy() {
   local db=$WS/build
   if [ ! -f "$db/compile_commands.json" ]; then
@@ -29,13 +32,16 @@ tidy() {
   fi
   local out
   out=$(git ls-files 'src/*.cpp' 'bench/*.cpp' 'test/*.cpp' ':!test/sanitize' |
+    sed "s|^|$WS/src/marble_maze/|" |
     xargs -P 2 -n 4 clang-tidy -p "$db" --quiet 2>/dev/null |
     grep -E '^[^ ].*: (warning|error):' | sort -u)
   [ -z "$out" ] || { echo "$out"; return 1; }
 }
 
+# shellcheck disable=SC2317
 python_files() {
   git ls-files '*.py'
+  # shellcheck disable=SC2046
   grep -l '^#!.*python' $(git ls-files 'nodes/*' 'scripts/*') 2>/dev/null | grep -v '\.py$'
 }
 

@@ -138,13 +138,22 @@ struct SweepHit {
   int tiles_visited = 0;
 };
 
-/// Time of impact: the first tile the sweep hits while approaching it, or none. Tiles within
+/// What a time of impact found (as Box2D's b2TOIOutput says why it found what it did).
+enum class ImpactState {
+  Hit,        ///< a tile met: the SweepHit says where and when
+  Separated,  ///< the path walked, and no tile met while approaching it
+  OffGrid,    ///< the path, grown by the radius, stays clear of the grid: nothing walked
+  Still,      ///< no motion relative to the board: nothing to meet
+};
+
+/// Time of impact: the first tile the sweep hits while approaching it, or why none. Tiles within
 /// radius + margin of the start are left to findContacts. The path is walked in pieces no longer
 /// than the radius, so the cost grows with its length, never with the maze, and no wall is
 /// skipped at any speed. On a bent path the time is a root of the quadratic (faces) or quartic
 /// (rounded edges and corners) that the distance gives. The contact comes back in the world
 /// through `frame`, the board's pose at the end of the stretch.
-bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& sweep, SweepHit* hit);
+ImpactState timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& sweep,
+                         SweepHit* hit);
 
 /// Time of impact (0..1) of a sphere moving from o by d against a box, both in one frame, when it
 /// starts outside the box grown by the radius; `point` gets the touched point of the box.

@@ -643,7 +643,7 @@ bool Sweep::clearOf(const NearTiles& near) const {
   return true;
 }
 
-bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {
+ImpactState timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, SweepHit* hit) {
   hit->tiles_visited = 0;
   const double radius = w.radius;
   // The whole path grown by the radius: when it stays clear of the grid (a marble in flight far
@@ -652,11 +652,11 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     Vec3 lo, hi;
     for (int a = 0; a < 3; ++a) coordinateRange(w, a, &lo[a], &hi[a]);
     const Vec3 grow = Vec3::Constant(radius + w.margin);
-    if (!overlapsGrid(maze, lo - grow, hi + grow)) return false;
+    if (!overlapsGrid(maze, lo - grow, hi + grow)) return ImpactState::OffGrid;
   }
   // The path's speed along s is largest at an end (its norm is convex), which bounds its length.
   const double length = std::max(w.rate(0).norm(), w.rate(1).norm());
-  if (!(length > 0)) return false;
+  if (!(length > 0)) return ImpactState::Still;
   // (Tiles beyond the marble's farthest reach, which the walk's boxes take in at their corners,
   // are passed over before any root is sought, with others no root can be found on.)
   const SweepReach sweep_reach(w);
@@ -708,7 +708,7 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
     // An impact within the pieces walked so far cannot be beaten by tiles further on.
     if (best <= s1) break;
   }
-  if (best == kNone) return false;
+  if (best == kNone) return ImpactState::Separated;
   hit->fraction = best;
   hit->contact.grid_normal = best_normal;
   hit->contact.normal = frame.rotation * best_normal;
@@ -717,7 +717,7 @@ bool timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& w, Swee
   hit->contact.surface_velocity = frame.surfaceVelocity(frame.toWorld(best_point));
   hit->contact.depth = 0;
   hit->contact.tile = best_tile;
-  return true;
+  return ImpactState::Hit;
 }
 
 }  // namespace marble_maze

@@ -3,14 +3,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstring>
 
 namespace marble_maze {
 
 char* writeExact(char* first, double value) {
   if (std::isnan(value)) {  // (its sign says nothing; printf would show "-nan")
-    std::memcpy(first, "nan", 3);
-    return first + 3;
+    return std::copy_n("nan", 3, first);
   }
   // The shortest digits that read back exactly, from std::to_chars in scientific form
   // ("[-]d[.ddd]e±XX", or "inf"), laid out as printf's %g lays out that many digits (six at

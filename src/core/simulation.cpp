@@ -554,7 +554,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     // clear its path.)
     SweepHit hit;
     const bool clear = impacts == 0 && sweep.clearOf(near_);
-    const bool hits = !clear && timeOfImpact(maze_, frame_, sweep, &hit);
+    const bool hits = !clear && timeOfImpact(maze_, frame_, sweep, &hit) == ImpactState::Hit;
     ++counts_.sweeps;
     counts_.sweeps_clear += clear;
     counts_.tiles_swept += hit.tiles_visited;

@@ -23,7 +23,7 @@ bool sweepStraight(const Maze& maze, const Vec3& from, const Vec3& path, double 
   sweep.path = path;
   sweep.radius = radius;
   sweep.margin = 1e-9;
-  return timeOfImpact(maze, GridFrame(), sweep, hit);
+  return timeOfImpact(maze, GridFrame(), sweep, hit) == ImpactState::Hit;
 }
 
 /// A uniform 1 cm grid, 10 x 10 x 3, with the given solid tiles.
@@ -312,6 +312,24 @@ TEST(SweepSphere, AFastMarbleNeverPassesAThinWall) {
   EXPECT_EQ(hit.contact.tile, Index3(6, 2, 0));
 }
 
+TEST(TimeOfImpact, SaysWhyItFoundNothing) {
+  Maze maze(AxisSlots(0.005, 0.02, 11), AxisSlots(0.005, 0.02, 5), AxisSlots::uniform(0.01, 1));
+  maze.setSolid({6, 2, 0}, true);  // a wall across the path, x from 0.075 to 0.08
+  const auto state = [&](const Vec3& from, const Vec3& path) {
+    Sweep sweep;
+    sweep.from = from;
+    sweep.path = path;
+    sweep.radius = 0.005;
+    sweep.margin = 1e-9;
+    SweepHit hit;
+    return timeOfImpact(maze, GridFrame(), sweep, &hit);
+  };
+  EXPECT_EQ(state({0.01, 0.0275, 0.005}, {0.1, 0, 0}), ImpactState::Hit);
+  EXPECT_EQ(state({0.01, 0.0275, 0.005}, {0.03, 0, 0}), ImpactState::Separated);  // short of it
+  EXPECT_EQ(state({0.01, 0.0275, 1.0}, {0.1, 0, 0}), ImpactState::OffGrid);       // a metre above
+  EXPECT_EQ(state({0.01, 0.0275, 0.005}, {0, 0, 0}), ImpactState::Still);
+}
+
 TEST(SweepSphere, RollingOverSeamsOfASunkenFloorHitsNothing) {
   Maze maze(AxisSlots(0.005, 0.02, 41), AxisSlots::uniform(0.02, 3), AxisSlots::uniform(0.01, 1));
   for (int i = 0; i < 41; ++i) maze.setSolid({i, 1, 0}, true);
@@ -338,7 +356,7 @@ TEST(TimeOfImpact, ABentPathMeetsAnEdgeWhereItsDistanceFirstReachesTheRadius) {
   sweep.radius = 0.005;
   sweep.margin = 1e-9;
   SweepHit hit;
-  ASSERT_TRUE(timeOfImpact(maze, GridFrame(), sweep, &hit));
+  ASSERT_EQ(timeOfImpact(maze, GridFrame(), sweep, &hit), ImpactState::Hit);
   const Box box = maze.tileBox({2, 2, 0});
   const auto gap = [&](double s) {
     const Vec3 c = sweep.at(s);
@@ -395,7 +413,8 @@ TEST(SweepClearOf, LetsByAPathBesideAWallThatItDoesNotMeet) {
     findContacts(maze, GridFrame(), sweep.from, r, sweep.margin, &contacts, &near);
     EXPECT_EQ(contacts.size(), c.gap > 0 ? 1u : 2u);  // the floor, and the wall when touching
     SweepHit hit;
-    EXPECT_EQ(timeOfImpact(maze, GridFrame(), sweep, &hit), c.meets) << c.path.transpose();
+    EXPECT_EQ(timeOfImpact(maze, GridFrame(), sweep, &hit) == ImpactState::Hit, c.meets)
+        << c.path.transpose();
     if (c.meets && c.gap == 0) {
       EXPECT_NEAR(hit.fraction, 2.0 / 3.0, 1e-9);
     }
@@ -444,7 +463,7 @@ TEST(SweepClearOf, SaysClearOnlyWhereTheWalkFindsNoImpact) {
     if (n % 4 == 3)  // started elsewhere than where the near tiles were gathered
       sweep.from += near.skin * Vec3(uniform(-1, 1), uniform(-1, 1), on_floor ? 0 : uniform(-1, 1));
     SweepHit hit;
-    const bool meets = timeOfImpact(maze, frame, sweep, &hit);
+    const bool meets = timeOfImpact(maze, frame, sweep, &hit) == ImpactState::Hit;
     hits += meets;
     if (!sweep.clearOf(near)) continue;
     ++clear;

@@ -104,8 +104,7 @@ TEST(FollowRosTime, ACommandActsAtTheStepItsStampFallsOn) {
   FakeNode node;
   FollowRosTime policy(node.context());
   policy.tick(ros::Time(100.0));
-  const double held =
-      policy.command(ros::Time(100.05), mm::TiltCommand::Kind::Angles, 0.0, 0.05);
+  const double held = policy.command(ros::Time(100.05), mm::TiltCommand::Kind::Angles, 0.0, 0.05);
   EXPECT_DOUBLE_EQ(held, 0.05);
   policy.tick(ros::Time(100.049));
   EXPECT_EQ(node.session.queued(), 1u);  // held until its step

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_mazes.h"
+#include "marble_maze/agent_env.h"
 #include "marble_maze/csv.h"
 #include "marble_maze/simulation.h"
 
@@ -203,6 +204,58 @@ void BM_StepWithCsvRow(benchmark::State& state) {
 }
 BENCHMARK(BM_StepWithCsvRow)->Apply(fixedSteps)->ArgName("row")->Arg(0)->Arg(1);
 
+/// Learning agents: a control step (1/55 s of the classic maze at the `fast` preset) under random
+/// actions, per environment. envs:0 is the in-process loop an author writes by hand on one
+/// Session (a command, a period's steps, nothing observed); the others are VectorAgentEnv's
+/// step of that many environments on that many threads, observations and rewards included.
+/// The ratio in the group is a control step's cost against the hand-written loop's.
+void BM_AgentControlStep(benchmark::State& state) {
+  const int envs = static_cast<int>(state.range(0));
+  const int threads = static_cast<int>(state.range(1));
+  mm::AgentEnvOptions options;
+  std::vector<double> actions(std::size_t{4096} * mm::AgentEnv::kActionSize);
+  std::uint64_t random = 12345;
+  for (double& a : actions) {  // (a fixed sequence: the same actions in every run)
+    random = random * 6364136223846793005ull + 1442695040888963407ull;
+    a = static_cast<double>(random >> 11) * 0x1p-52 - 1.0;
+  }
+  std::size_t k = 0;
+  if (envs == 0) {
+    const mm::Scene scene = mm::agentScene(options);
+    mm::Session session(scene);
+    const auto steps = static_cast<std::uint64_t>(std::llround(1 / 55.0 / scene.params.step));
+    for (auto _ : state) {
+      const double* a = &actions[(k++ % 4096) * 2];
+      session.command({session.steps(), mm::TiltCommand::Kind::Angles,
+                       a[0] * scene.params.tilt_limit, a[1] * scene.params.tilt_limit});
+      session.run(steps);
+      if (session.simulation().marble().phase != mm::MarblePhase::Free) session.reset();
+    }
+    state.SetItemsProcessed(state.iterations());
+    return;
+  }
+  mm::VectorAgentEnv vector(envs, options, threads);
+  const std::size_t n = static_cast<std::size_t>(envs);
+  std::vector<float> obs(n * mm::AgentEnv::kObservationSize), final_obs(obs.size());
+  std::vector<double> rewards(n), batch(n * mm::AgentEnv::kActionSize);
+  std::vector<std::uint8_t> terminated(n), truncated(n);
+  vector.reset(obs.data());
+  for (auto _ : state) {
+    for (double& a : batch) a = actions[k++ % actions.size()];
+    vector.step(batch.data(), obs.data(), rewards.data(), terminated.data(), truncated.data(),
+                final_obs.data());
+  }
+  state.SetItemsProcessed(state.iterations() * envs);
+}
+BENCHMARK(BM_AgentControlStep)
+    ->ArgNames({"envs", "threads"})
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Args({8, 1})
+    ->Args({64, 1})
+    ->Args({64, 2})
+    ->UseRealTime();
+
 /// Prints the usual table, then each case as a ratio to the first case of its group.
 class RatioReporter : public benchmark::ConsoleReporter {
  public:
@@ -211,9 +264,13 @@ class RatioReporter : public benchmark::ConsoleReporter {
     for (const Run& run : runs) {
       if (run.run_type != Run::RT_Iteration || run.error_occurred) continue;
       const std::string name = run.benchmark_name();
-      rows_.push_back(
-          {name.substr(0, name.find('/')), name, run.report_label,
-           run.GetAdjustedRealTime() * 1e9 / benchmark::GetTimeUnitMultiplier(run.time_unit)});
+      // (A case that counts items, a control step of each environment, is timed per item.)
+      const auto items = run.counters.find("items_per_second");
+      const double ns =
+          items != run.counters.end() && items->second.value > 0
+              ? 1e9 / items->second.value
+              : run.GetAdjustedRealTime() * 1e9 / benchmark::GetTimeUnitMultiplier(run.time_unit);
+      rows_.push_back({name.substr(0, name.find('/')), name, run.report_label, ns});
     }
   }
   void Finalize() override {

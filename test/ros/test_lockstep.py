@@ -17,7 +17,9 @@ import unittest
 import rospy
 import rostest
 
-from marble_maze.msg import BoardTilt, MarbleState
+import lockstep_link
+
+from marble_maze.msg import BoardTilt
 from marble_maze.srv import Step
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
@@ -28,23 +30,7 @@ COMMANDS = 200
 
 class LockstepTest(unittest.TestCase):
     def connect(self):
-        """The states as they come (a list and a condition notified on each), and the tilt
-        publisher, connected to the node. Its queue holds a whole burst: rospy shares one
-        connection among a process's publishers of a topic, with the queue of the first."""
-        states, arrived = [], threading.Condition()
-
-        def on_state(msg):
-            with arrived:
-                states.append(msg)
-                arrived.notify()
-
-        rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1000)
-        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1000)
-        deadline = time.time() + 20
-        while tilt.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.05)
-        time.sleep(0.5)
-        return states, arrived, tilt
+        return lockstep_link.connect()
 
     def test_each_command_advances_one_period(self):
         states, arrived, tilt = self.connect()

@@ -8,15 +8,15 @@ the last command, and the auto reset puts the marble back 0.3 s after the hole."
 import os
 import subprocess
 import tempfile
-import threading
-import time
 import unittest
 
 import rospkg
 import rospy
 import rostest
 
-from marble_maze.msg import BoardTilt, MarbleState
+import lockstep_link
+
+from marble_maze.msg import BoardTilt
 from marble_maze.srv import Step
 from std_srvs.srv import Trigger
 
@@ -63,20 +63,8 @@ class RunnerMatchesNodeTest(unittest.TestCase):
         maze = os.path.join(rospkg.RosPack().get_path("marble_maze"), "test", "ros",
                             "hole_beside.yaml")
         expected = simulate_rows(maze)
-        states, arrived = [], threading.Condition()
-
-        def on_state(msg):
-            with arrived:
-                states.append(msg)
-                arrived.notify()
-
-        rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=1000)
-        tilt = rospy.Publisher("tilt", BoardTilt, queue_size=1000)
-        deadline = time.time() + 20
-        while tilt.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.05)
         rospy.wait_for_service("step")
-        time.sleep(0.5)  # (a fresh publisher's first message reaches only those connected)
+        states, arrived, tilt = lockstep_link.connect()
 
         steps = 0
         while steps * STEP <= PROGRAM[-1][0] + 1e-12:

@@ -1,0 +1,123 @@
+// Environments for learning agents: a session stepped one control period at a time, with an
+// observation, a reward and episodes, and many of them stepped together. ROS-free; Python
+// reaches them through marble_maze.agents (python/marble_maze/agents.py).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "marble_maze/maze_file.h"
+#include "marble_maze/route_planner.h"
+#include "marble_maze/session.h"
+
+namespace marble_maze {
+
+struct AgentEnvOptions {
+  std::string maze = "classic";  ///< a built-in maze or a maze file
+  std::string preset = "fast";   ///< the physics' preset (params.h), before `sets`
+  std::vector<std::pair<std::string, std::string>> sets;  ///< keys over the preset, as --set
+  double control_rate = 55.0;                             ///< Hz: one action a period
+  double max_episode_seconds = 60;                        ///< then the episode is truncated
+  bool tilt_rates = false;        ///< actions are tilt rates (of tilt_rate_limit), not angles
+  double progress_reward = 10.0;  ///< per metre nearer the goal along the route
+  double hole_penalty = 1.0;      ///< on falling into a hole or off the board
+  double goal_bonus = 1.0;        ///< on reaching the goal
+};
+
+/// The route to the goal from every column of a maze, planned once: where the marble should go
+/// next from a column and how far the goal is from there.
+class RouteField {
+ public:
+  RouteField(const Maze& maze, double radius);
+  /// The next waypoint from a board-frame point (the goal's centre near the goal), and the
+  /// route's length from that waypoint to the goal; false where no route leads to a goal.
+  bool next(const Vec2& at, Vec2* waypoint, double* rest) const;
+  /// The route's length from a board-frame point to the goal (infinite where there is none).
+  double distance(const Vec2& at) const;
+
+ private:
+  std::size_t indexOf(const Maze::Cell& c) const;
+
+  RoutePlanner planner_;
+  int columns_x_ = 0;
+  std::vector<Vec2> waypoint_;  // per column
+  std::vector<double> rest_;    // per column; negative: no route
+};
+
+/// One environment: an episode of a session, advanced a control period per action.
+class AgentEnv {
+ public:
+  /// The observation, in this order (SI units, board frame): the marble's x, y; its vx, vy; the
+  /// board's roll, pitch; the target roll, pitch; the next waypoint's dx, dy from the marble.
+  static constexpr int kObservationSize = 10;
+  static constexpr int kActionSize = 2;
+
+  AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
+           const AgentEnvOptions& options);
+
+  /// A new episode: the marble on the start at rest, the board level.
+  void reset();
+  struct Outcome {
+    double reward = 0;
+    bool terminated = false;  ///< in a hole, at the goal or off the board
+    bool truncated = false;   ///< the episode's time ran out
+  };
+  /// One control period under `action` (roll, pitch in [-1, 1], scaled to the tilt limit, or
+  /// to the tilt rate limit with tilt_rates; clipped to [-1, 1]).
+  Outcome step(const double* action);
+  void observe(float* out) const;
+
+  const Session& session() const { return session_; }
+  /// The steps a control period takes, and their length: the preset's step shortened to the
+  /// largest that divides the period exactly.
+  int stepsPerPeriod() const { return steps_per_period_; }
+  double step() const { return session_.simulation().params().step; }
+
+ private:
+  Session session_;
+  std::shared_ptr<const RouteField> route_;
+  AgentEnvOptions options_;
+  int steps_per_period_ = 1;
+  int periods_ = 0;
+  int max_periods_ = 0;
+  double target_roll_ = 0, target_pitch_ = 0;
+  double distance_ = 0;  // along the route, at the last period's end
+};
+
+/// The scene an environment runs: the maze with the preset and the sets over its physics, its
+/// step shortened to divide the control period. Throws ParamError or MazeFileError naming what
+/// is wrong.
+Scene agentScene(const AgentEnvOptions& options);
+
+/// N environments stepped together, as Gymnasium's vector environments are: an episode that
+/// ends is reset at once, its last observation kept for the caller. Each environment's episodes
+/// are the same whatever the number of threads.
+class VectorAgentEnv {
+ public:
+  VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int num_threads = 1);
+  int size() const { return static_cast<int>(envs_.size()); }
+  /// Every environment back to a new episode; `obs` gets N x kObservationSize.
+  void reset(float* obs);
+  /// One control period of every environment under `actions` (N x kActionSize): fills `obs`,
+  /// `rewards`, `terminated` and `truncated` (N each); where an episode ended, `final_obs` gets
+  /// its last observation and `obs` the new episode's first.
+  void step(const double* actions, float* obs, double* rewards, std::uint8_t* terminated,
+            std::uint8_t* truncated, float* final_obs);
+  const AgentEnv& env(int i) const { return *envs_[static_cast<std::size_t>(i)]; }
+  ~VectorAgentEnv();
+  VectorAgentEnv(const VectorAgentEnv&) = delete;
+  VectorAgentEnv& operator=(const VectorAgentEnv&) = delete;
+
+ private:
+  class Pool;
+  /// Runs `work(first, last)` over the environments, split among the threads.
+  void forEachSlice(const std::function<void(int, int)>& work);
+
+  std::vector<std::unique_ptr<AgentEnv>> envs_;
+  std::unique_ptr<Pool> pool_;  // the threads beside the caller's, waiting between calls
+};
+
+}  // namespace marble_maze

@@ -1,0 +1,149 @@
+"""Environments for learning agents, with Gymnasium's API, over the marble_maze core: no ROS
+master and no rospy needed.
+
+    import marble_maze.agents as agents
+    envs = agents.VectorMazeEnv(64, maze="classic", preset="fast", seed=1)
+    obs, info = envs.reset()
+    obs, reward, terminated, truncated, info = envs.step(actions)  # actions: (64, 2) in [-1, 1]
+
+Each environment is a session of the core stepped one control period per action (55 Hz by
+default, honoured exactly: the preset's step is shortened to the largest that divides the
+period). An action is the target roll and pitch as fractions of the tilt limit (or, with
+tilt_rates=True, tilt rates as fractions of the rate limit), clipped to [-1, 1].
+
+The observation (float32, 10 values, SI units in the board frame): the marble's x, y; its
+velocity vx, vy; the board's roll, pitch; the target roll, pitch; the next waypoint of the route
+to the goal, dx, dy from the marble. The reward: progress_reward per metre nearer the goal along
+the route planner's path, -hole_penalty on a hole or off the board, +goal_bonus at the goal.
+An episode is terminated in a hole, off the board or at the goal, and truncated after
+max_episode_seconds. Finished episodes start again at once, as Gymnasium's vector environments
+do; their last observation is in info["final_observation"].
+
+Every episode starts with the marble on the maze's start at rest and the board level: the seed
+is taken for Gymnasium's API, and the episodes are the same bit for bit whatever num_threads.
+"""
+import numpy as np
+
+from marble_maze import _agents
+
+OBSERVATION_SIZE = _agents.OBSERVATION_SIZE
+ACTION_SIZE = 2
+
+try:  # the spaces and base classes of Gymnasium where it is installed, the same API where not
+    import gymnasium
+    from gymnasium.spaces import Box
+    _EnvBase, _VectorEnvBase = gymnasium.Env, gymnasium.vector.VectorEnv
+except ImportError:
+    gymnasium = None
+
+    class Box:
+        """A box of R^n, as gymnasium.spaces.Box describes one."""
+
+        def __init__(self, low, high, shape, dtype):
+            self.low = np.full(shape, low, dtype=dtype)
+            self.high = np.full(shape, high, dtype=dtype)
+            self.shape = tuple(shape)
+            self.dtype = np.dtype(dtype)
+            self._random = np.random.default_rng()
+
+        def seed(self, seed=None):
+            self._random = np.random.default_rng(seed)
+
+        def sample(self):
+            low = np.where(np.isfinite(self.low), self.low, -1.0)
+            high = np.where(np.isfinite(self.high), self.high, 1.0)
+            return self._random.uniform(low, high).astype(self.dtype)
+
+        def contains(self, x):
+            x = np.asarray(x)
+            return x.shape == self.shape and bool(np.all(x >= self.low) and np.all(x <= self.high))
+
+    _EnvBase = _VectorEnvBase = object
+
+
+def _make(num_envs, maze, preset, control_rate, max_episode_seconds, tilt_rates, num_threads,
+          progress_reward, hole_penalty, goal_bonus, sets):
+    return _agents.VectorEnv(int(num_envs), str(maze), str(preset), float(control_rate),
+                             float(max_episode_seconds), bool(tilt_rates), int(num_threads),
+                             float(progress_reward), float(hole_penalty), float(goal_bonus),
+                             {str(k): str(v) for k, v in (sets or {}).items()})
+
+
+class VectorMazeEnv(_VectorEnvBase):
+    """num_envs environments stepped together in one C++ call, spread over num_threads."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, num_envs, maze="classic", preset="fast", control_rate=55.0,
+                 max_episode_seconds=60.0, seed=0, tilt_rates=False, num_threads=1,
+                 progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0, sets=None):
+        self._env = _make(num_envs, maze, preset, control_rate, max_episode_seconds, tilt_rates,
+                          num_threads, progress_reward, hole_penalty, goal_bonus, sets)
+        self.num_envs = self._env.num_envs
+        self.single_observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
+        self.single_action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
+        self.observation_space = Box(-np.inf, np.inf, (self.num_envs, OBSERVATION_SIZE),
+                                     np.float32)
+        self.action_space = Box(-1.0, 1.0, (self.num_envs, ACTION_SIZE), np.float32)
+        self.control_period = 1.0 / control_rate
+        self.steps_per_period = self._env.steps_per_period
+        self.step_length = self._env.step_length
+        self._seed = seed
+
+    def reset(self, seed=None, options=None):
+        if seed is not None:
+            self._seed = seed
+            self.action_space.seed(seed)
+        return self._env.reset(), {}
+
+    def step(self, actions):
+        obs, reward, terminated, truncated, final = self._env.step(
+            np.asarray(actions, dtype=np.float64).reshape(self.num_envs, ACTION_SIZE))
+        info = {}
+        done = terminated | truncated
+        if done.any():
+            info["final_observation"] = np.array([final[i] if d else None
+                                                  for i, d in enumerate(done)], dtype=object)
+            info["_final_observation"] = done
+        return obs, reward, terminated, truncated, info
+
+    def simulated_time(self, i):
+        """Simulated seconds of environment i since its creation (resets keep time going)."""
+        return self._env.simulated_time(i)
+
+    def close(self):
+        pass
+
+
+class MazeEnv(_EnvBase):
+    """One environment with Gymnasium's Env API."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, maze="classic", preset="fast", control_rate=55.0, max_episode_seconds=60.0,
+                 tilt_rates=False, progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0,
+                 sets=None):
+        self._env = _make(1, maze, preset, control_rate, max_episode_seconds, tilt_rates, 1,
+                          progress_reward, hole_penalty, goal_bonus, sets)
+        self.observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
+        self.action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
+        self.render_mode = None
+
+    def reset(self, seed=None, options=None):
+        if seed is not None:
+            self.action_space.seed(seed)
+        return self._env.reset()[0], {}
+
+    def step(self, action):
+        obs, reward, terminated, truncated, final = self._env.step(
+            np.asarray(action, dtype=np.float64).reshape(1, ACTION_SIZE))
+        done = bool(terminated[0] or truncated[0])
+        # (Gymnasium's Env is reset by its caller: the episode's last observation is returned.)
+        return (final[0] if done else obs[0]), float(reward[0]), bool(terminated[0]), \
+            bool(truncated[0]), {}
+
+    def render(self):
+        return None
+
+    def close(self):
+        pass

@@ -1,0 +1,281 @@
+#include "marble_maze/agent_env.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <mutex>
+#include <thread>
+
+namespace marble_maze {
+
+RouteField::RouteField(const Maze& maze, double radius) : planner_(maze, radius) {
+  columns_x_ = maze.size().x();
+  const int columns = maze.size().x() * maze.size().y();
+  waypoint_.assign(static_cast<std::size_t>(columns), Vec2::Zero());
+  rest_.assign(static_cast<std::size_t>(columns), -1.0);
+  for (int j = 0; j < maze.size().y(); ++j)
+    for (int i = 0; i < maze.size().x(); ++i) {
+      const Maze::Cell cell{i, j};
+      if (!planner_.open(cell)) continue;
+      const Route route = planner_.plan(planner_.centre(cell));
+      if (!route.found()) continue;
+      // The waypoint after the column's own centre (the goal's, when it is the last), and the
+      // route's length from there.
+      const std::size_t next = std::min<std::size_t>(1, route.waypoints.size() - 1);
+      double rest = 0;
+      for (std::size_t k = next + 1; k < route.waypoints.size(); ++k)
+        rest += (route.waypoints[k] - route.waypoints[k - 1]).norm();
+      const std::size_t index = indexOf(cell);
+      waypoint_[index] = route.waypoints[next];
+      rest_[index] = rest;
+    }
+}
+
+std::size_t RouteField::indexOf(const Maze::Cell& c) const {
+  return static_cast<std::size_t>(c.j) * static_cast<std::size_t>(columns_x_) +
+         static_cast<std::size_t>(c.i);
+}
+
+bool RouteField::next(const Vec2& at, Vec2* waypoint, double* rest) const {
+  const Maze::Cell c = planner_.columnAt(at);
+  if (c.i < 0 || c.j < 0 || c.i >= columns_x_ || indexOf(c) >= rest_.size()) return false;
+  const std::size_t index = indexOf(c);
+  if (rest_[index] < 0) return false;
+  *waypoint = waypoint_[index];
+  *rest = rest_[index];
+  return true;
+}
+
+double RouteField::distance(const Vec2& at) const {
+  Vec2 waypoint;
+  double rest = 0;
+  if (!next(at, &waypoint, &rest)) return std::numeric_limits<double>::infinity();
+  return (waypoint - at).norm() + rest;
+}
+
+Scene agentScene(const AgentEnvOptions& options) {
+  if (!(options.control_rate > 0 && options.control_rate <= 1e4))
+    throw ParamError("control_rate: expected a rate in (0, 10000] Hz");
+  Scene scene = loadScene(options.maze);
+  overrideParam(&scene, "preset", options.preset);
+  for (const auto& [key, value] : options.sets) overrideParam(&scene, key, value);
+  // Exact control periods: the step shortened to the largest that divides the period (55 Hz at
+  // 5 ms: four steps of 4.545 ms), so that every action acts for exactly its period.
+  const double period = 1.0 / options.control_rate;
+  const double steps = std::ceil(period / scene.params.step * (1 - 1e-12));
+  scene.params.step = period / steps;
+  validate(scene.params);
+  return scene;
+}
+
+AgentEnv::AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
+                   const AgentEnvOptions& options)
+    : session_(scene), route_(std::move(route)), options_(options) {
+  steps_per_period_ = static_cast<int>(std::llround(1.0 / options.control_rate / step()));
+  max_periods_ = static_cast<int>(std::llround(options.max_episode_seconds * options.control_rate));
+  reset();
+}
+
+void AgentEnv::reset() {
+  session_.reset();
+  periods_ = 0;
+  target_roll_ = target_pitch_ = 0;
+  const Vec3 p = session_.simulation().marbleInBoard();
+  distance_ = route_->distance(Vec2(p.x(), p.y()));
+}
+
+AgentEnv::Outcome AgentEnv::step(const double* action) {
+  const Params& params = session_.simulation().params();
+  const double a0 = std::clamp(std::isfinite(action[0]) ? action[0] : 0.0, -1.0, 1.0);
+  const double a1 = std::clamp(std::isfinite(action[1]) ? action[1] : 0.0, -1.0, 1.0);
+  TiltCommand command;
+  command.step = session_.steps();
+  if (options_.tilt_rates) {
+    command.kind = TiltCommand::Kind::Rates;
+    command.roll = a0 * params.tilt_rate_limit;
+    command.pitch = a1 * params.tilt_rate_limit;
+  } else {
+    command.roll = target_roll_ = a0 * params.tilt_limit;
+    command.pitch = target_pitch_ = a1 * params.tilt_limit;
+  }
+  session_.command(command);
+  session_.run(static_cast<std::uint64_t>(steps_per_period_));
+  ++periods_;
+
+  Outcome outcome;
+  const Vec3 p = session_.simulation().marbleInBoard();
+  const double distance = route_->distance(Vec2(p.x(), p.y()));
+  // Progress along the route (none counted across a column with no route, whose distance is
+  // infinite, nor out of one).
+  if (std::isfinite(distance) && std::isfinite(distance_))
+    outcome.reward += options_.progress_reward * (distance_ - distance);
+  distance_ = distance;
+  switch (session_.simulation().marble().phase) {
+    case MarblePhase::Free:
+      break;
+    case MarblePhase::AtGoal:
+      outcome.reward += options_.goal_bonus;
+      outcome.terminated = true;
+      break;
+    case MarblePhase::InHole:
+    case MarblePhase::OffBoard:
+      outcome.reward -= options_.hole_penalty;
+      outcome.terminated = true;
+      break;
+  }
+  outcome.truncated = !outcome.terminated && periods_ >= max_periods_;
+  return outcome;
+}
+
+void AgentEnv::observe(float* out) const {
+  const Simulation& sim = session_.simulation();
+  const Vec3 p = sim.marbleInBoard();
+  const Vec3 v = sim.board().rotation().transpose() * sim.marble().velocity;
+  Vec2 waypoint(p.x(), p.y());
+  double rest = 0;
+  route_->next(Vec2(p.x(), p.y()), &waypoint, &rest);
+  const double values[kObservationSize] = {p.x(),
+                                           p.y(),
+                                           v.x(),
+                                           v.y(),
+                                           sim.board().roll(),
+                                           sim.board().pitch(),
+                                           target_roll_,
+                                           target_pitch_,
+                                           waypoint.x() - p.x(),
+                                           waypoint.y() - p.y()};
+  for (int k = 0; k < kObservationSize; ++k) out[k] = static_cast<float>(values[k]);
+}
+
+/// Threads that each run their slice of the environments when asked, and wait in between: a
+/// step of many environments costs no thread's start.
+class VectorAgentEnv::Pool {
+ public:
+  explicit Pool(int helpers) {
+    for (int t = 1; t <= helpers; ++t) threads_.emplace_back([this, t] { serve(t); });
+  }
+  ~Pool() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+      generation_.fetch_add(1);
+    }
+    start_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+  /// `work(first, last)` over n environments in as many slices as threads, the caller's first.
+  void run(int n, const std::function<void(int, int)>& work) {
+    work_ = &work;
+    n_ = n;
+    pending_.store(static_cast<int>(threads_.size()));
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      generation_.fetch_add(1);
+    }
+    start_.notify_all();
+    work(0, n / slices());
+    // (A call's work is some tens of microseconds: waking a sleeping thread can take as long, so
+    // each side spins a while before it sleeps.)
+    for (int spin = 0; pending_.load() != 0 && spin < kSpins; ++spin) std::this_thread::yield();
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [this] { return pending_.load() == 0; });
+  }
+
+ private:
+  static constexpr int kSpins = 20000;
+  int slices() const { return static_cast<int>(threads_.size()) + 1; }
+
+  void serve(int slice) {
+    std::uint64_t seen = 0;
+    for (;;) {
+      for (int spin = 0; generation_.load() == seen && spin < kSpins; ++spin)
+        std::this_thread::yield();
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        start_.wait(lock, [&] { return generation_.load() != seen; });
+        if (stop_) return;
+        seen = generation_.load();
+      }
+      const int n = n_;
+      (*work_)(n * slice / slices(), n * (slice + 1) / slices());
+      if (pending_.fetch_sub(1) == 1) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_.notify_one();
+      }
+    }
+  }
+
+  std::vector<std::thread> threads_;
+  std::mutex mutex_;
+  std::condition_variable start_, done_;
+  const std::function<void(int, int)>* work_ = nullptr;
+  int n_ = 0;
+  std::atomic<int> pending_{0};
+  std::atomic<std::uint64_t> generation_{0};
+  bool stop_ = false;
+};
+
+VectorAgentEnv::VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int num_threads) {
+  if (num_envs < 1) throw ParamError("num_envs: expected at least 1");
+  if (num_threads < 1) throw ParamError("num_threads: expected at least 1");
+  const Scene scene = agentScene(options);
+  const auto route = std::make_shared<const RouteField>(scene.maze, scene.params.marble_radius);
+  for (int i = 0; i < num_envs; ++i)
+    envs_.push_back(std::make_unique<AgentEnv>(scene, route, options));
+  // (Each environment is stepped by one thread alone and touches nothing shared: the same
+  // episodes whatever the split.)
+  const int helpers = std::min(num_threads, num_envs) - 1;
+  if (helpers > 0) pool_ = std::make_unique<Pool>(helpers);
+}
+
+VectorAgentEnv::~VectorAgentEnv() = default;
+
+void VectorAgentEnv::forEachSlice(const std::function<void(int, int)>& work) {
+  if (pool_)
+    pool_->run(size(), work);
+  else
+    work(0, size());
+}
+
+namespace {
+
+/// Where environment i's row of `size` values starts in an array of them.
+std::ptrdiff_t slot(int i, int size) {
+  return static_cast<std::ptrdiff_t>(i) * size;
+}
+
+}  // namespace
+
+void VectorAgentEnv::reset(float* obs) {
+  forEachSlice([&](int first, int last) {
+    for (int i = first; i < last; ++i) {
+      envs_[static_cast<std::size_t>(i)]->reset();
+      envs_[static_cast<std::size_t>(i)]->observe(obs + slot(i, AgentEnv::kObservationSize));
+    }
+  });
+}
+
+void VectorAgentEnv::step(const double* actions, float* obs, double* rewards,
+                          std::uint8_t* terminated, std::uint8_t* truncated, float* final_obs) {
+  forEachSlice([&](int first, int last) {
+    for (int i = first; i < last; ++i) {
+      AgentEnv& env = *envs_[static_cast<std::size_t>(i)];
+      const AgentEnv::Outcome outcome = env.step(actions + slot(i, AgentEnv::kActionSize));
+      rewards[i] = outcome.reward;
+      terminated[i] = outcome.terminated;
+      truncated[i] = outcome.truncated;
+      float* o = obs + slot(i, AgentEnv::kObservationSize);
+      env.observe(o);
+      if (outcome.terminated || outcome.truncated) {
+        std::copy(o, o + AgentEnv::kObservationSize,
+                  final_obs + slot(i, AgentEnv::kObservationSize));
+        env.reset();
+        env.observe(o);
+      }
+    }
+  });
+}
+
+}  // namespace marble_maze

@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""marble_maze.agents as an agent's author uses it, with no ROS master: Gymnasium's shapes and
+dtypes, exact control periods, the same episodes whatever the threads, episodes that end and
+start again, and a reward that pays for progress along the route."""
+import os
+import sys
+import unittest
+
+import numpy as np
+
+import marble_maze.agents as agents
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+HOLE_BESIDE = os.path.join(HERE, "..", "ros", "hole_beside.yaml")
+
+
+def steer(obs):
+    """A P-D controller towards the next waypoint: pitch lowers the board's +x edge (the marble
+    rolls to +x), roll raises its +y edge (the marble rolls to -y)."""
+    ax = 20 * obs[:, 8] - 3 * obs[:, 2]
+    ay = 20 * obs[:, 9] - 3 * obs[:, 3]
+    return np.clip(np.stack([-ay, ax], axis=1), -1, 1)
+
+
+class AgentsTest(unittest.TestCase):
+    def test_the_shapes_and_dtypes_are_gymnasiums(self):
+        envs = agents.VectorMazeEnv(4)
+        obs, info = envs.reset(seed=1)
+        self.assertEqual(obs.shape, (4, agents.OBSERVATION_SIZE))
+        self.assertEqual(obs.dtype, np.float32)
+        self.assertEqual(info, {})
+        obs, reward, terminated, truncated, info = envs.step(np.zeros((4, 2)))
+        self.assertEqual(obs.shape, (4, 10))
+        self.assertEqual((reward.shape, reward.dtype), ((4,), np.float64))
+        self.assertEqual((terminated.dtype, truncated.dtype), (np.bool_, np.bool_))
+        self.assertTrue(envs.single_action_space.contains(np.array([1, -1], np.float32)))
+        # On the start at rest, the board level: the marble at the start cell's centre.
+        self.assertAlmostEqual(float(obs[0, 4]), 0.0, places=12)
+        env = agents.MazeEnv()
+        first, _ = env.reset(seed=3)
+        self.assertEqual(first.shape, (10,))
+        after, reward, terminated, truncated, _ = env.step(np.array([0.2, -0.1]))
+        self.assertIsInstance(reward, float)
+        self.assertFalse(terminated or truncated)
+
+    def test_55_hz_is_honoured_exactly(self):
+        envs = agents.VectorMazeEnv(1, control_rate=55.0, preset="fast")
+        # The 5 ms step shortened to the largest that divides 1/55 s: four of 4.545 ms.
+        self.assertEqual(envs.steps_per_period, 4)
+        self.assertAlmostEqual(envs.steps_per_period * envs.step_length, 1 / 55, delta=1e-18)
+        envs.reset()
+        for _ in range(550):
+            envs.step(np.zeros((1, 2)))
+        self.assertAlmostEqual(envs.simulated_time(0), 10.0, delta=1e-12)
+        realtime = agents.VectorMazeEnv(1, control_rate=55.0, preset="realtime")
+        self.assertEqual(realtime.steps_per_period, 19)  # 1 ms shortened to 0.957 ms
+
+    def test_the_same_episodes_whatever_the_threads(self):
+        rng = np.random.default_rng(5)
+        actions = rng.uniform(-1, 1, (300, 8, 2))
+        runs = []
+        for threads in (1, 2, 3):
+            envs = agents.VectorMazeEnv(8, num_threads=threads, max_episode_seconds=2.0)
+            obs, _ = envs.reset(seed=5)
+            trace = [obs]
+            for a in actions:
+                obs, reward, terminated, truncated, _ = envs.step(a)
+                trace += [obs, reward, terminated, truncated]
+            runs.append(trace)
+        for other in runs[1:]:
+            for a, b in zip(runs[0], other):
+                np.testing.assert_array_equal(a, b)
+
+    def test_an_episode_ends_in_a_hole_and_starts_again(self):
+        envs = agents.VectorMazeEnv(2, maze=HOLE_BESIDE, hole_penalty=1.0)
+        start, _ = envs.reset()
+        for period in range(200):  # the board lowered towards +x, into the hole beside the start
+            obs, reward, terminated, truncated, info = envs.step(np.array([[0, 1], [0, 1]]))
+            if terminated.any():
+                break
+        self.assertTrue(terminated.all(), "no hole in 200 periods")
+        self.assertFalse(truncated.any())
+        self.assertLessEqual(float(reward[0]), -1.0 + 1e-9)  # the penalty, no progress (no route)
+        final = info["final_observation"][0]
+        self.assertGreater(float(final[0]), float(start[0, 0]) + 0.01)  # over the hole
+        np.testing.assert_array_equal(obs, start)  # the new episode's first observation
+
+    def test_an_episode_is_truncated_at_its_time_limit(self):
+        envs = agents.VectorMazeEnv(1, max_episode_seconds=0.2)
+        envs.reset()
+        ends = [envs.step(np.zeros((1, 2)))[3][0] for _ in range(23)]
+        self.assertEqual([k for k, t in enumerate(ends) if t], [10, 21])  # 11 periods of 1/55 s
+
+    def test_steering_along_the_route_is_paid_and_random_play_is_not(self):
+        def total(policy, seconds=4.0):
+            envs = agents.VectorMazeEnv(4, max_episode_seconds=60.0)
+            obs, _ = envs.reset(seed=2)
+            rng = np.random.default_rng(2)
+            paid = np.zeros(4)
+            for _ in range(int(seconds * 55)):
+                obs, reward, _, _, _ = envs.step(policy(obs, rng))
+                paid += reward
+            return paid.mean()
+
+        steered = total(lambda obs, rng: steer(obs))
+        random = total(lambda obs, rng: rng.uniform(-1, 1, (4, 2)))
+        print("return over 4 s: steered %.3f, random %.3f" % (steered, random))
+        self.assertGreater(steered, 0.5)  # half a metre of the route, at 10 a metre
+        self.assertGreater(steered, random + 0.5)
+
+    def test_bad_arguments_are_refused_naming_them(self):
+        with self.assertRaisesRegex(ValueError, "nope"):
+            agents.VectorMazeEnv(1, maze="nope")
+        with self.assertRaisesRegex(ValueError, "restitution"):
+            agents.VectorMazeEnv(1, sets={"restitution": 2})
+        with self.assertRaisesRegex(ValueError, "control_rate"):
+            agents.VectorMazeEnv(1, control_rate=0)
+        envs = agents.VectorMazeEnv(2)
+        envs.reset()
+        with self.assertRaisesRegex(ValueError, "actions: expected shape"):
+            envs._env.step(np.zeros((3, 2)))
+
+
+if __name__ == "__main__":
+    if any(arg.startswith("--gtest_output=xml:") for arg in sys.argv):
+        import rosunit
+        rosunit.unitrun("marble_maze", "test_agents", AgentsTest)
+    else:
+        unittest.main()

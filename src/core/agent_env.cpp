@@ -63,9 +63,7 @@ Scene agentScene(const AgentEnvOptions& options) {
   for (const auto& [key, value] : options.sets) overrideParam(&scene, key, value);
   // Exact control periods: the step shortened to the largest that divides the period (55 Hz at
   // 5 ms: four steps of 4.545 ms), so that every action acts for exactly its period.
-  const double period = 1.0 / options.control_rate;
-  const double steps = std::ceil(period / scene.params.step * (1 - 1e-12));
-  scene.params.step = period / steps;
+  scene.params.step = stepDividing(1.0 / options.control_rate, scene.params.step);
   validate(scene.params);
   return scene;
 }

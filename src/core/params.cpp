@@ -22,6 +22,12 @@ std::string Params::whyTooFast(double speed) const {
          " m/s (1e5 radii a step) that a step resolves";
 }
 
+double stepDividing(double period, double step) {
+  const double whole = std::round(period / step);
+  if (whole >= 1 && std::abs(whole * step - period) <= 1e-9 * period) return step;
+  return period / std::ceil(period / step);
+}
+
 std::string outOfRangeText(const std::string& name, double value, double min, double max) {
   return name + ": " + exactText(value) + " is out of range [" + exactText(min) + ", " +
          exactText(max) + "]";

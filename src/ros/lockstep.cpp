@@ -7,22 +7,11 @@ namespace marble_maze_ros {
 namespace mm = marble_maze;
 
 void Lockstep::start(ros::NodeHandle& nh) {
-  warnIfPeriodRounds();
   ownClock(nh);
 }
 
 std::uint64_t Lockstep::stepsPerPeriod() const {
   return std::max<std::uint64_t>(1, std::llround(c_.settings->lockstep / step()));
-}
-
-void Lockstep::warnIfPeriodRounds() const {
-  const double period = c_.settings->lockstep;
-  const double taken = static_cast<double>(stepsPerPeriod()) * step();
-  if (std::abs(taken - period) > 1e-9 * period)
-    ROS_WARN(
-        "marble_maze: ~lockstep: %g s is not a whole number of steps of %g s; each command "
-        "advances %g s",
-        period, step(), taken);
 }
 
 double Lockstep::command(const ros::Time& /*stamp*/, mm::TiltCommand::Kind kind, double roll,

@@ -17,19 +17,15 @@ class Lockstep : public TimePolicy {
   double command(const ros::Time& stamp, marble_maze::TiltCommand::Kind kind, double roll,
                  double pitch) override;
   void refused() override;
-  void physicsChanged() override { warnIfPeriodRounds(); }
   bool publishesEachStep() const override { return false; }
   bool repeatsStamps() const override { return true; }
   void fillHealth(HealthFigures* figures) const override;
-  /// The steps a command advances: the period's nearest whole number, one at least.
+  /// The steps a command advances: the period's whole number of them (the node's step divides
+  /// it: fitToLockstep).
   std::uint64_t stepsPerPeriod() const;
 
  protected:
   bool clockStands() const override { return true; }
-
- private:
-  /// Warns when the period is not a whole number of steps.
-  void warnIfPeriodRounds() const;
 };
 
 }  // namespace marble_maze_ros

@@ -212,6 +212,7 @@ std::string MazeNode::reconfigure(const Reconfigure::Changes& changes) {
       else
         mm::setParam(params, key, value);
     }
+    fitToLockstep(settings_, &params);
     mm::validate(params);
     std::string why = whyNotRunnable(settings_, params);
     if (!why.empty()) return why;
@@ -243,7 +244,6 @@ std::string MazeNode::valueOf(const std::string& key) const {
 
 void MazeNode::changed() {
   written_.write(settings_, session_->simulation().params());
-  time_->physicsChanged();
 }
 
 }  // namespace marble_maze_ros

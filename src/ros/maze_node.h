@@ -53,7 +53,7 @@ class MazeNode {
   std::string load(const std::string& maze);
   std::string reconfigure(const Reconfigure::Changes& changes);
   std::string valueOf(const std::string& key) const;
-  /// After the maze or the physics changed: the values written back, the policy told.
+  /// After the maze or the physics changed: the values in force written back.
   void changed();
 
   WrittenBack written_;  // first made, last gone: the parameters left as they were given

@@ -106,9 +106,14 @@ void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& s) {
   }
 }
 
+void fitToLockstep(const NodeSettings& settings, mm::Params* params) {
+  if (settings.lockstep > 0) params->step = mm::stepDividing(settings.lockstep, params->step);
+}
+
 mm::Scene sceneFor(const std::string& maze, const NodeSettings& settings) {
   mm::Scene scene = mm::loadScene(maze);
   for (const auto& [key, text] : settings.overrides) mm::overrideParam(&scene, key, text);
+  fitToLockstep(settings, &scene.params);
   mm::validate(scene.params);
   return scene;
 }

@@ -47,6 +47,9 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, marble_maze::Scene* scene)
 /// A maze (a built-in name or a file) with the physics of its file and these settings' keys over
 /// it; throws marble_maze::MazeFileError or ParamError.
 marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& settings);
+/// In lockstep, the step shortened where it must be to divide ~lockstep's period into whole
+/// steps (marble_maze::stepDividing), so that every command advances exactly the period.
+void fitToLockstep(const NodeSettings& settings, marble_maze::Params* params);
 /// Throws std::runtime_error naming the parameter when the frames do not make the chain
 /// world -> board -> marble: one empty, starting with '/', or named as another.
 void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& settings);

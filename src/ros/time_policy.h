@@ -62,8 +62,6 @@ class TimePolicy {
   virtual void resumed() {}
   /// The real-time factor in the settings changed live.
   virtual void realTimeFactorChanged() {}
-  /// The maze or the physics changed (another step, say).
-  virtual void physicsChanged() {}
   /// Whether a state is published after each step that makes one due (not in lockstep: after
   /// each period).
   virtual bool publishesEachStep() const { return true; }

@@ -116,6 +116,20 @@ TEST(ExactText, IsPrintfsShortestGeneralFormOfAtLeastSixDigits) {
   }
 }
 
+TEST(Params, TheStepDividingAPeriodIsTheLongestThatDividesIt) {
+  EXPECT_EQ(stepDividing(0.02, 0.001), 0.001);  // already whole: kept to the bit
+  EXPECT_EQ(stepDividing(0.001, 0.001), 0.001);
+  const double period = 1.0 / 55;
+  EXPECT_NEAR(stepDividing(period, 0.001) * 19, period, 1e-18);  // 19 of 0.957 ms
+  EXPECT_NEAR(stepDividing(period, 0.005) * 4, period, 1e-18);   // 4 of 4.545 ms
+  EXPECT_EQ(stepDividing(0.001, 0.005), 0.001);                  // a period under a step
+  for (double step : {1e-4, 3e-4, 0.0017, 0.004, 0.0099}) {
+    const double fitted = stepDividing(period, step);
+    EXPECT_LE(fitted, step);
+    EXPECT_GT(fitted, step * (1 - step / period));  // one step more at most
+  }
+}
+
 TEST(Params, ValidateRefusesAThresholdThatWouldMakeSemiImplicitEulerBounceAtRest) {
   Params p;
   p.integrator = IntegratorKind::SemiImplicitEuler;

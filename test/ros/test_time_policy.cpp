@@ -18,7 +18,14 @@ namespace mm = marble_maze;
 /// What the node does for a policy, recorded: the states published (their stamps), the anchors
 /// and the restarts.
 struct FakeNode {
-  FakeNode() : session(mm::loadScene("classic")) { ros::Time::setNow(ros::Time(100.0)); }
+  explicit FakeNode(double step = 0.001) : session(sceneWithStep(step)) {
+    ros::Time::setNow(ros::Time(100.0));
+  }
+  static mm::Scene sceneWithStep(double step) {
+    mm::Scene scene = mm::loadScene("classic");
+    scene.params.step = step;
+    return scene;
+  }
 
   PolicyContext context() {
     PolicyContext c;
@@ -33,7 +40,8 @@ struct FakeNode {
     };
     c.publish_state = [this](const ros::Time& stamp, bool) { published.push_back(stamp); };
     c.reanchor = [this](const ros::Time& origin) {
-      clock.anchor(origin, session.steps(), session.simulation().time(), 1000000);
+      clock.anchor(origin, session.steps(), session.simulation().time(),
+                   std::llround(session.simulation().params().step * 1e9));
     };
     c.restart = [this](const ros::Time& now) {
       clock.anchor(now, session.steps(), session.simulation().time(), 1000000);
@@ -142,11 +150,14 @@ TEST(Lockstep, PausedACommandWaitsAndARefusedOneIsAnsweredAtTheSameStamp) {
   EXPECT_EQ(node.published.size(), 1u);  // paused, no state comes
 }
 
-TEST(Lockstep, APeriodThatIsNoWholeNumberOfStepsIsRounded) {
-  FakeNode node;
+TEST(Lockstep, A55HzPeriodIsHonouredExactly) {
+  // The node's step is shortened to divide the period (fitToLockstep): 19 steps of 0.957 ms.
+  FakeNode node(mm::stepDividing(1.0 / 55, 0.001));
   node.settings.lockstep = 1.0 / 55;  // 18.18 ms
   Lockstep policy(node.context());
-  EXPECT_EQ(policy.stepsPerPeriod(), 18u);
+  EXPECT_EQ(policy.stepsPerPeriod(), 19u);
+  for (int k = 0; k < 55; ++k) policy.command(ros::Time(), mm::TiltCommand::Kind::Angles, 0, 0);
+  EXPECT_NEAR(node.session.simulation().time(), 1.0, 1e-12);
   HealthFigures f;
   policy.fillHealth(&f);
   EXPECT_TRUE(f.lockstep);

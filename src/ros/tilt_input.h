@@ -35,11 +35,8 @@ class TiltInput {
   TiltInput(ros::NodeHandle& nh, Handler handler,
             std::function<const marble_maze::Params&()> limits, std::function<void()> refused);
 
-  std::uint64_t received() const { return received_; }
-  /// Commands lost on the way since the start (gaps in their publishers' header.seq).
-  std::uint64_t lost() const { return lost_total_; }
-  ros::Time last() const { return last_; }
-  /// The commands' figures of /diagnostics: received, lost, seconds since the last.
+  /// The commands' figures of /diagnostics: received since the start, lost on the way (gaps in
+  /// their publishers' header.seq), seconds of ROS time since the last.
   void fillHealth(HealthFigures* figures) const;
 
  private:

@@ -25,6 +25,15 @@ struct AgentEnvOptions {
   double progress_reward = 10.0;  ///< per metre nearer the goal along the route
   double hole_penalty = 1.0;      ///< on falling into a hole or off the board
   double goal_bonus = 1.0;        ///< on reaching the goal
+  /// Per episode: the marble on a random open column with a route to a goal, not the start.
+  bool random_start = false;
+  /// Per episode: each key drawn uniformly from [low, high] (keys of the key table: marble_radius,
+  /// friction, restitution, tilt_response_time, ...).
+  struct Range {
+    std::string key;
+    double low = 0, high = 0;
+  };
+  std::vector<Range> ranges;
 };
 
 /// The route to the goal from every column of a maze, planned once: where the marble should go
@@ -32,6 +41,8 @@ struct AgentEnvOptions {
 class RouteField {
  public:
   RouteField(const Maze& maze, double radius);
+  /// The centres of the open columns from which a route leads to a goal.
+  const std::vector<Vec2>& routedCentres() const { return routed_; }
   /// The next waypoint from a board-frame point (the goal's centre near the goal), and the
   /// route's length from that waypoint to the goal; false where no route leads to a goal.
   bool next(const Vec2& at, Vec2* waypoint, double* rest) const;
@@ -45,6 +56,7 @@ class RouteField {
   int columns_x_ = 0;
   std::vector<Vec2> waypoint_;  // per column
   std::vector<double> rest_;    // per column; negative: no route
+  std::vector<Vec2> routed_;
 };
 
 /// One environment: an episode of a session, advanced a control period per action.
@@ -58,7 +70,11 @@ class AgentEnv {
   AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
            const AgentEnvOptions& options);
 
-  /// A new episode: the marble on the start at rest, the board level.
+  /// Episodes from now on are drawn from `seed` (with the environment's `index`): the n-th
+  /// episode after a seeding is the same whatever else runs beside it.
+  void seed(std::uint64_t seed, std::uint64_t index);
+  /// A new episode: the marble at rest on the start (or a random open column), the board level,
+  /// the ranged keys drawn anew.
   void reset();
   struct Outcome {
     double reward = 0;
@@ -85,6 +101,8 @@ class AgentEnv {
   int max_periods_ = 0;
   double target_roll_ = 0, target_pitch_ = 0;
   double distance_ = 0;  // along the route, at the last period's end
+  Params nominal_;       // the scene's physics, which the ranges vary about
+  std::uint64_t seed_ = 0, index_ = 0, episode_ = 0;
 };
 
 /// The scene an environment runs: the maze with the preset and the sets over its physics, its
@@ -99,8 +117,9 @@ class VectorAgentEnv {
  public:
   VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int num_threads = 1);
   int size() const { return static_cast<int>(envs_.size()); }
-  /// Every environment back to a new episode; `obs` gets N x kObservationSize.
-  void reset(float* obs);
+  /// Every environment back to a new episode; `obs` gets N x kObservationSize. With a seed,
+  /// environment i's episodes are drawn from (seed, i) from now on.
+  void reset(float* obs, const std::uint64_t* seed = nullptr);
   /// One control period of every environment under `actions` (N x kActionSize): fills `obs`,
   /// `rewards`, `terminated` and `truncated` (N each); where an episode ended, `final_obs` gets
   /// its last observation and `obs` the new episode's first.

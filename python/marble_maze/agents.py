@@ -19,8 +19,11 @@ An episode is terminated in a hole, off the board or at the goal, and truncated 
 max_episode_seconds. Finished episodes start again at once, as Gymnasium's vector environments
 do; their last observation is in info["final_observation"].
 
-Every episode starts with the marble on the maze's start at rest and the board level: the seed
-is taken for Gymnasium's API, and the episodes are the same bit for bit whatever num_threads.
+Every episode starts with the marble at rest and the board level. randomize varies episodes:
+{"start": "random"} puts the marble on a random open column with a route to the goal, and
+{"friction": (0.2, 0.4), ...} draws each key of the key table uniformly from its range. The
+n-th episode of environment i after reset(seed) depends on (seed, i, n) alone: the same bit for
+bit whatever num_threads.
 """
 import numpy as np
 
@@ -61,12 +64,23 @@ except ImportError:
     _EnvBase = _VectorEnvBase = object
 
 
-def _make(num_envs, maze, preset, control_rate, max_episode_seconds, tilt_rates, num_threads,
-          progress_reward, hole_penalty, goal_bonus, sets):
-    return _agents.VectorEnv(int(num_envs), str(maze), str(preset), float(control_rate),
-                             float(max_episode_seconds), bool(tilt_rates), int(num_threads),
-                             float(progress_reward), float(hole_penalty), float(goal_bonus),
-                             {str(k): str(v) for k, v in (sets or {}).items()})
+def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds, tilt_rates,
+          progress_reward, hole_penalty, goal_bonus, sets, randomize):
+    o = _agents.Options()
+    o.maze, o.preset = str(maze), str(preset)
+    o.control_rate, o.max_episode_seconds = float(control_rate), float(max_episode_seconds)
+    o.tilt_rates = bool(tilt_rates)
+    o.progress_reward, o.hole_penalty = float(progress_reward), float(hole_penalty)
+    o.goal_bonus = float(goal_bonus)
+    o.sets = [(str(k), str(v)) for k, v in (sets or {}).items()]
+    randomize = dict(randomize or {})
+    start = randomize.pop("start", "start")
+    if start not in ("start", "random"):
+        raise ValueError("randomize: start: expected 'start' or 'random', got %r" % (start,))
+    o.random_start = start == "random"
+    o.ranges = [_agents.Range(str(k), float(low), float(high))
+                for k, (low, high) in randomize.items()]
+    return _agents.VectorEnv(int(num_envs), o, int(num_threads))
 
 
 class VectorMazeEnv(_VectorEnvBase):
@@ -75,10 +89,11 @@ class VectorMazeEnv(_VectorEnvBase):
     metadata = {"render_modes": []}
 
     def __init__(self, num_envs, maze="classic", preset="fast", control_rate=55.0,
-                 max_episode_seconds=60.0, seed=0, tilt_rates=False, num_threads=1,
-                 progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0, sets=None):
-        self._env = _make(num_envs, maze, preset, control_rate, max_episode_seconds, tilt_rates,
-                          num_threads, progress_reward, hole_penalty, goal_bonus, sets)
+                 max_episode_seconds=60.0, seed=0, randomize=None, tilt_rates=False,
+                 num_threads=1, progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0,
+                 sets=None):
+        self._env = _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds,
+                          tilt_rates, progress_reward, hole_penalty, goal_bonus, sets, randomize)
         self.num_envs = self._env.num_envs
         self.single_observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.single_action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
@@ -88,13 +103,13 @@ class VectorMazeEnv(_VectorEnvBase):
         self.control_period = 1.0 / control_rate
         self.steps_per_period = self._env.steps_per_period
         self.step_length = self._env.step_length
-        self._seed = seed
+        self._seed = seed  # the first reset's, unless it is given one
 
     def reset(self, seed=None, options=None):
+        seed, self._seed = (self._seed if seed is None else seed), None
         if seed is not None:
-            self._seed = seed
             self.action_space.seed(seed)
-        return self._env.reset(), {}
+        return self._env.reset(seed), {}
 
     def step(self, actions):
         obs, reward, terminated, truncated, final = self._env.step(
@@ -111,6 +126,10 @@ class VectorMazeEnv(_VectorEnvBase):
         """Simulated seconds of environment i since its creation (resets keep time going)."""
         return self._env.simulated_time(i)
 
+    def params(self, i):
+        """Environment i's physics in force, {key: text}, as simulate --set takes them."""
+        return dict(line.split("=", 1) for line in self._env.params_text(i).splitlines())
+
     def close(self):
         pass
 
@@ -121,18 +140,20 @@ class MazeEnv(_EnvBase):
     metadata = {"render_modes": []}
 
     def __init__(self, maze="classic", preset="fast", control_rate=55.0, max_episode_seconds=60.0,
-                 tilt_rates=False, progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0,
-                 sets=None):
-        self._env = _make(1, maze, preset, control_rate, max_episode_seconds, tilt_rates, 1,
-                          progress_reward, hole_penalty, goal_bonus, sets)
+                 seed=0, randomize=None, tilt_rates=False, progress_reward=10.0,
+                 hole_penalty=1.0, goal_bonus=1.0, sets=None):
+        self._env = _make(1, 1, maze, preset, control_rate, max_episode_seconds, tilt_rates,
+                          progress_reward, hole_penalty, goal_bonus, sets, randomize)
+        self._seed = seed
         self.observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
         self.render_mode = None
 
     def reset(self, seed=None, options=None):
+        seed, self._seed = (self._seed if seed is None else seed), None
         if seed is not None:
             self.action_space.seed(seed)
-        return self._env.reset()[0], {}
+        return self._env.reset(seed)[0], {}
 
     def step(self, action):
         obs, reward, terminated, truncated, final = self._env.step(

@@ -30,6 +30,7 @@ RouteField::RouteField(const Maze& maze, double radius) : planner_(maze, radius)
       const std::size_t index = indexOf(cell);
       waypoint_[index] = route.waypoints[next];
       rest_[index] = rest;
+      routed_.push_back(planner_.centre(cell));
     }
 }
 
@@ -70,14 +71,50 @@ Scene agentScene(const AgentEnvOptions& options) {
 
 AgentEnv::AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
                    const AgentEnvOptions& options)
-    : session_(scene), route_(std::move(route)), options_(options) {
+    : session_(scene), route_(std::move(route)), options_(options), nominal_(scene.params) {
   steps_per_period_ = static_cast<int>(std::llround(1.0 / options.control_rate / step()));
   max_periods_ = static_cast<int>(std::llround(options.max_episode_seconds * options.control_rate));
   reset();
 }
 
+namespace {
+
+/// SplitMix64: a number from the seed, the environment and the episode alone.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+}  // namespace
+
+void AgentEnv::seed(std::uint64_t seed, std::uint64_t index) {
+  seed_ = seed;
+  index_ = index;
+  episode_ = 0;
+}
+
 void AgentEnv::reset() {
+  std::uint64_t draw = mix(mix(mix(seed_) ^ index_) ^ episode_++);
+  const auto uniform = [&draw] {
+    draw = mix(draw);
+    return static_cast<double>(draw >> 11) * 0x1p-53;  // [0, 1)
+  };
+  if (!options_.ranges.empty()) {
+    Params params = nominal_;
+    for (const AgentEnvOptions::Range& r : options_.ranges)
+      setParam(params, r.key, exactText(r.low + (r.high - r.low) * uniform()));
+    session_.setParams(params);
+  }
   session_.reset();
+  if (options_.random_start && !route_->routedCentres().empty()) {
+    const std::vector<Vec2>& open = route_->routedCentres();
+    const auto pick = static_cast<std::size_t>(uniform() * static_cast<double>(open.size()));
+    const Vec2 at = open[std::min(open.size() - 1, pick)];
+    const double radius = session_.simulation().params().marble_radius;
+    session_.place(Vec3(at.x(), at.y(), radius), Vec3::Zero(), Vec3::Zero());
+  }
   periods_ = 0;
   target_roll_ = target_pitch_ = 0;
   const Vec3 p = session_.simulation().marbleInBoard();
@@ -220,8 +257,18 @@ VectorAgentEnv::VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int
   if (num_threads < 1) throw ParamError("num_threads: expected at least 1");
   const Scene scene = agentScene(options);
   const auto route = std::make_shared<const RouteField>(scene.maze, scene.params.marble_radius);
-  for (int i = 0; i < num_envs; ++i)
+  // Each key's range checked once, at both ends, as the key table checks a value.
+  for (const AgentEnvOptions::Range& r : options.ranges) {
+    if (!(r.low <= r.high)) throw ParamError(r.key + ": the range's low end is above its high end");
+    Params probe = scene.params;
+    setParam(probe, r.key, exactText(r.low));
+    setParam(probe, r.key, exactText(r.high));
+    validate(probe);
+  }
+  for (int i = 0; i < num_envs; ++i) {
     envs_.push_back(std::make_unique<AgentEnv>(scene, route, options));
+    envs_.back()->seed(0, static_cast<std::uint64_t>(i));
+  }
   // (Each environment is stepped by one thread alone and touches nothing shared: the same
   // episodes whatever the split.)
   const int helpers = std::min(num_threads, num_envs) - 1;
@@ -246,9 +293,10 @@ std::ptrdiff_t slot(int i, int size) {
 
 }  // namespace
 
-void VectorAgentEnv::reset(float* obs) {
+void VectorAgentEnv::reset(float* obs, const std::uint64_t* seed) {
   forEachSlice([&](int first, int last) {
     for (int i = first; i < last; ++i) {
+      if (seed) envs_[static_cast<std::size_t>(i)]->seed(*seed, static_cast<std::uint64_t>(i));
       envs_[static_cast<std::size_t>(i)]->reset();
       envs_[static_cast<std::size_t>(i)]->observe(obs + slot(i, AgentEnv::kObservationSize));
     }

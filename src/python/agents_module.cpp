@@ -4,7 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <map>
+#include <optional>
 #include <string>
 
 #include "marble_maze/agent_env.h"
@@ -20,19 +20,14 @@ using Flags = py::array_t<bool, py::array::c_style>;
 
 class VectorEnv {
  public:
-  VectorEnv(int num_envs, const std::string& maze, const std::string& preset, double control_rate,
-            double max_episode_seconds, bool tilt_rates, int num_threads, double progress_reward,
-            double hole_penalty, double goal_bonus, const std::map<std::string, std::string>& sets)
-      : env_(num_envs,
-             options(maze, preset, control_rate, max_episode_seconds, tilt_rates, progress_reward,
-                     hole_penalty, goal_bonus, sets),
-             num_threads) {}
+  VectorEnv(int num_envs, const mm::AgentEnvOptions& options, int num_threads)
+      : env_(num_envs, options, num_threads) {}
 
-  Floats reset() {
+  Floats reset(std::optional<std::uint64_t> seed) {
     Floats obs({env_.size(), mm::AgentEnv::kObservationSize});
     {
       py::gil_scoped_release release;
-      env_.reset(obs.mutable_data());
+      env_.reset(obs.mutable_data(), seed ? &*seed : nullptr);
     }
     return obs;
   }
@@ -58,29 +53,11 @@ class VectorEnv {
   }
 
   int size() const { return env_.size(); }
+  const mm::Simulation& simulation(int i) const { return env_.env(i).session().simulation(); }
   int stepsPerPeriod() const { return env_.env(0).stepsPerPeriod(); }
   double stepLength() const { return env_.env(0).step(); }
-  double tiltLimit() const { return env_.env(0).session().simulation().params().tilt_limit; }
-  double simulatedTime(int i) const { return env_.env(i).session().simulation().time(); }
 
  private:
-  static mm::AgentEnvOptions options(const std::string& maze, const std::string& preset,
-                                     double control_rate, double max_episode_seconds,
-                                     bool tilt_rates, double progress_reward, double hole_penalty,
-                                     double goal_bonus,
-                                     const std::map<std::string, std::string>& sets) {
-    mm::AgentEnvOptions o;
-    o.maze = maze;
-    o.preset = preset;
-    o.control_rate = control_rate;
-    o.max_episode_seconds = max_episode_seconds;
-    o.tilt_rates = tilt_rates;
-    o.progress_reward = progress_reward;
-    o.hole_penalty = hole_penalty;
-    o.goal_bonus = goal_bonus;
-    o.sets.assign(sets.begin(), sets.end());
-    return o;
-  }
   static std::string shapeOf(const Doubles& a) {
     std::string s = "(";
     for (py::ssize_t k = 0; k < a.ndim(); ++k) s += (k ? ", " : "") + std::to_string(a.shape(k));
@@ -97,18 +74,33 @@ PYBIND11_MODULE(_agents, m) {
   m.attr("OBSERVATION_SIZE") = mm::AgentEnv::kObservationSize;
   py::register_exception<mm::ParamError>(m, "ParamError", PyExc_ValueError);
   py::register_exception<mm::MazeFileError>(m, "MazeFileError", PyExc_ValueError);
+  py::class_<mm::AgentEnvOptions::Range>(m, "Range")
+      .def(py::init([](const std::string& key, double low, double high) {
+             return mm::AgentEnvOptions::Range{key, low, high};
+           }),
+           py::arg("key"), py::arg("low"), py::arg("high"));
+  py::class_<mm::AgentEnvOptions>(m, "Options")
+      .def(py::init<>())
+      .def_readwrite("maze", &mm::AgentEnvOptions::maze)
+      .def_readwrite("preset", &mm::AgentEnvOptions::preset)
+      .def_readwrite("sets", &mm::AgentEnvOptions::sets)
+      .def_readwrite("control_rate", &mm::AgentEnvOptions::control_rate)
+      .def_readwrite("max_episode_seconds", &mm::AgentEnvOptions::max_episode_seconds)
+      .def_readwrite("tilt_rates", &mm::AgentEnvOptions::tilt_rates)
+      .def_readwrite("progress_reward", &mm::AgentEnvOptions::progress_reward)
+      .def_readwrite("hole_penalty", &mm::AgentEnvOptions::hole_penalty)
+      .def_readwrite("goal_bonus", &mm::AgentEnvOptions::goal_bonus)
+      .def_readwrite("random_start", &mm::AgentEnvOptions::random_start)
+      .def_readwrite("ranges", &mm::AgentEnvOptions::ranges);
   py::class_<VectorEnv>(m, "VectorEnv")
-      .def(py::init<int, const std::string&, const std::string&, double, double, bool, int, double,
-                    double, double, const std::map<std::string, std::string>&>(),
-           py::arg("num_envs"), py::arg("maze"), py::arg("preset"), py::arg("control_rate"),
-           py::arg("max_episode_seconds"), py::arg("tilt_rates"), py::arg("num_threads"),
-           py::arg("progress_reward"), py::arg("hole_penalty"), py::arg("goal_bonus"),
-           py::arg("sets"))
-      .def("reset", &VectorEnv::reset)
+      .def(py::init<int, const mm::AgentEnvOptions&, int>(), py::arg("num_envs"),
+           py::arg("options"), py::arg("num_threads"))
+      .def("reset", &VectorEnv::reset, py::arg("seed") = py::none())
       .def("step", &VectorEnv::step)
       .def_property_readonly("num_envs", &VectorEnv::size)
       .def_property_readonly("steps_per_period", &VectorEnv::stepsPerPeriod)
       .def_property_readonly("step_length", &VectorEnv::stepLength)
-      .def_property_readonly("tilt_limit", &VectorEnv::tiltLimit)
-      .def("simulated_time", &VectorEnv::simulatedTime);
+      .def("simulated_time", [](const VectorEnv& e, int i) { return e.simulation(i).time(); })
+      .def("params_text",
+           [](const VectorEnv& e, int i) { return mm::paramsText(e.simulation(i).params()); });
 }

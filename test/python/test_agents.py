@@ -108,6 +108,37 @@ class AgentsTest(unittest.TestCase):
         self.assertGreater(steered, 0.5)  # half a metre of the route, at 10 a metre
         self.assertGreater(steered, random + 0.5)
 
+    def test_randomised_episodes_keep_to_their_ranges_and_their_seed(self):
+        ranges = {"friction": (0.2, 0.4), "restitution": (0.3, 0.7),
+                  "tilt_response_time": (0.02, 0.08), "marble_radius": (0.0055, 0.0065)}
+
+        def episodes(seed, threads):
+            envs = agents.VectorMazeEnv(6, seed=seed, num_threads=threads,
+                                        randomize=dict(start="random", **ranges))
+            firsts, drawn = [], []
+            for _ in range(3):
+                obs, _ = envs.reset() if not firsts else envs.reset(seed=seed + len(firsts))
+                firsts.append(obs)
+                drawn.append([envs.params(i) for i in range(6)])
+            return firsts, drawn
+
+        firsts, drawn = episodes(7, 1)
+        for params in sum(drawn, []):
+            for key, (low, high) in ranges.items():
+                self.assertTrue(low <= float(params[key]) <= high, (key, params[key]))
+        values = {params["friction"] for params in sum(drawn, [])}
+        self.assertGreater(len(values), 10)  # drawn anew for each environment and episode
+        starts = {tuple(np.round(obs[i, :2], 6)) for obs in firsts for i in range(6)}
+        self.assertGreater(len(starts), 5)  # random open columns, not the maze's start alone
+        for obs in firsts:  # each at rest on an open column
+            np.testing.assert_array_equal(obs[:, 2:4], 0)
+        again, drawn_again = episodes(7, 3)
+        for a, b in zip(firsts, again):
+            np.testing.assert_array_equal(a, b)  # the same seed: the same episodes, any threads
+        self.assertEqual(drawn, drawn_again)
+        other, _ = episodes(8, 1)
+        self.assertFalse(np.array_equal(firsts[0], other[0]))
+
     def test_bad_arguments_are_refused_naming_them(self):
         with self.assertRaisesRegex(ValueError, "nope"):
             agents.VectorMazeEnv(1, maze="nope")
@@ -115,6 +146,10 @@ class AgentsTest(unittest.TestCase):
             agents.VectorMazeEnv(1, sets={"restitution": 2})
         with self.assertRaisesRegex(ValueError, "control_rate"):
             agents.VectorMazeEnv(1, control_rate=0)
+        with self.assertRaisesRegex(ValueError, "friction"):
+            agents.VectorMazeEnv(1, randomize={"friction": (0.2, 20)})
+        with self.assertRaisesRegex(ValueError, "start"):
+            agents.VectorMazeEnv(1, randomize={"start": "anywhere"})
         envs = agents.VectorMazeEnv(2)
         envs.reset()
         with self.assertRaisesRegex(ValueError, "actions: expected shape"):

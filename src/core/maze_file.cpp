@@ -14,6 +14,7 @@
 
 #include "marble_maze/embedded_mazes.h"
 #include "marble_maze/in_quotes.h"
+#include "marble_maze/maze_generator.h"
 #include "marble_maze/text_file.h"
 
 namespace marble_maze {
@@ -577,6 +578,8 @@ std::vector<std::string> embeddedSceneNames() {
 }
 
 Scene loadScene(const std::string& name_or_path, const Params& defaults) {
+  if (isGeneratedMazeName(name_or_path))
+    return parseScene(generatedMazeText(name_or_path), "<" + name_or_path + ">", defaults);
   for (const auto& maze : embeddedMazes())
     if (maze.first == name_or_path)
       return parseScene(maze.second, "<embedded:" + maze.first + ">", defaults);

@@ -139,6 +139,14 @@ class AgentsTest(unittest.TestCase):
         other, _ = episodes(8, 1)
         self.assertFalse(np.array_equal(firsts[0], other[0]))
 
+    def test_a_generated_maze_is_played_like_any(self):
+        envs = agents.VectorMazeEnv(2, maze="generated:seed=3,cells=5x5")
+        obs, _ = envs.reset()
+        self.assertTrue(np.all(np.isfinite(obs)))
+        self.assertTrue(np.any(obs[:, 8:10] != 0))  # a route to follow
+        again = agents.VectorMazeEnv(2, maze="generated:seed=3,cells=5x5").reset()[0]
+        np.testing.assert_array_equal(obs, again)
+
     def test_bad_arguments_are_refused_naming_them(self):
         with self.assertRaisesRegex(ValueError, "nope"):
             agents.VectorMazeEnv(1, maze="nope")

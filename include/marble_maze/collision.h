@@ -144,6 +144,12 @@ enum class ImpactState {
   Separated,  ///< the path walked, and no tile met while approaching it
   OffGrid,    ///< the path, grown by the radius, stays clear of the grid: nothing walked
   Still,      ///< no motion relative to the board: nothing to meet
+  /// No tile met, and the path started inside a tile by more than the margin: the overlap is
+  /// findContacts' to resolve (pushOut), not an impact's.
+  Overlapped,
+  /// The path is longer than a million radii: more pieces than a walk takes, nothing walked (a
+  /// simulation's step never asks it: its speed is bounded to 1e5 radii a step).
+  GaveUp,
 };
 
 /// Time of impact: the first tile the sweep hits while approaching it, or why none. Tiles within

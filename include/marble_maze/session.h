@@ -101,7 +101,13 @@ class Session {
   static constexpr std::size_t kQueueCapacity = 10000;
 
  private:
+  // A step's stages around the simulation's: the commands due, the timed actions, the step,
+  // then the auto reset of a finished marble once its time has come.
+  void applyDueCommands();
   void apply(const TiltCommand& command);
+  /// The tilt and rate timeouts, at the step their time comes.
+  void applyTimeouts();
+  void resetAfterFinish();
   /// Whether `seconds` have passed since the simulated time `since`, both counted in whole steps
   /// of the current length: at the very step the steps count to while the step stays the same,
   /// and within a step of that time across a change of the step.

@@ -56,6 +56,12 @@ struct StepCounts {
 /// A marble on a tilting board: the engine, a step at a time. Deterministic: the same scene and
 /// inputs give bit-identical states; nothing depends on wall time, addresses or threads.
 ///
+/// A step is taken in substeps, each as its stages: the board moves (moveBoard), the contacts
+/// at its start are gathered (gatherContacts) and a kick at the start resolved (impact), the
+/// integrator's path is swept to the next impact, resolved, and on (integrateToImpacts), and a
+/// marble low over a hole, the goal or nothing is held there (checkFinish). The commands that
+/// set the tilt come before a step, from Session.
+///
 /// To drive a simulation, use Session (session.h): tilt commands through its queue, the tilt and
 /// rate timeouts, the auto reset, pause, place, load and snapshots, as the node, the runner and
 /// the replay drive it. Simulation's own setters (setTargetTilt, setTiltRate, placeMarble) are
@@ -149,11 +155,30 @@ class Simulation {
     bool sampled_ = false;
   };
 
+  /// The board's motion over a substep, as the stages after it take it.
+  struct BoardMotion {
+    GridFrame start;     ///< the pose at the substep's start, turning at the substep's rate
+    Vec3 previous_spin;  ///< the board's angular velocity over the substep before
+    double start_roll, start_pitch;
+  };
+
+  /// How many substeps this step takes: the params' count, or more where the board turns far
+  /// or air drag slows the marble fast.
+  int substepsFor() const;
+  /// One substep, as its stages: the board, the contacts, a kick at the start, the contacts'
+  /// pose, integrate to the next impact and the impacts, the marble's turn, the finish.
   void substep(double h, double start_time);
+  BoardMotion moveBoard(double h);
+  /// A finished marble rides along with the board.
+  void rideWithBoard();
+  void gatherContacts(const GridFrame& start, double h);
   void pushOut();
+  /// The contacts' normals and surface velocities in the pose where the scheme's forces act.
+  void turnContactsToForcePose(const BoardMotion& motion);
   /// The substep after its start's impacts, the contacts' normals and surface velocities those
-  /// of the board's pose they push in until the first impact.
-  void advance(double h, double start_time, const GridFrame& start, const Vec3& previous_spin);
+  /// of the board's pose they push in until the first impact; each impact resolved in turn.
+  void integrateToImpacts(double h, double start_time, const BoardMotion& motion);
+  void turnMarble(double h);
   /// The contacts that act over a stretch (acting()): all but those the marble is leaving.
   void chooseActingContacts(double duration, const Vec3& previous_spin);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;

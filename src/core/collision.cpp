@@ -662,8 +662,12 @@ ImpactState timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& 
   const SweepReach sweep_reach(w);
   const double sag = sweep_reach.sag;
   const bool bent = sweep_reach.bent;
-  const int pieces = static_cast<int>(std::min(1e6, std::ceil(length / radius)));
+  const double needed = std::ceil(length / radius);
+  if (needed > 1e6) return ImpactState::GaveUp;
+  const int pieces = static_cast<int>(needed);
   double best = kNone;
+  bool overlapped = false;
+  const double overlap = std::max(0.0, radius - w.margin);
   Index3 best_tile = Index3::Zero();
   Vec3 best_point = Vec3::Zero(), best_normal = Vec3::Zero();
   for (int piece = 0; piece < pieces; ++piece) {
@@ -676,9 +680,11 @@ ImpactState timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& 
     narrowToPlanes(maze, w, &range);
     forEachSolidTile(maze, range, [&](const Index3& t, const Box& box) {
       ++hit->tiles_visited;
-      Vec3 away;
-      bool touches;
-      if (passedOver(w, sweep_reach, box, &away, &touches)) return;
+      Vec3 away = Vec3::Zero();
+      bool touches = false;
+      const bool passed = passedOver(w, sweep_reach, box, &away, &touches);
+      overlapped = overlapped || (touches && away.squaredNorm() < overlap * overlap);
+      if (passed) return;
       double time;
       Vec3 q;
       if (touches) {
@@ -708,7 +714,7 @@ ImpactState timeOfImpact(const Maze& maze, const GridFrame& frame, const Sweep& 
     // An impact within the pieces walked so far cannot be beaten by tiles further on.
     if (best <= s1) break;
   }
-  if (best == kNone) return ImpactState::Separated;
+  if (best == kNone) return overlapped ? ImpactState::Overlapped : ImpactState::Separated;
   hit->fraction = best;
   hit->contact.grid_normal = best_normal;
   hit->contact.normal = frame.rotation * best_normal;

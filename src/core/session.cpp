@@ -60,31 +60,42 @@ void Session::run(std::uint64_t count) {
   events_.clear();
   applied_.clear();
   for (std::uint64_t i = 0; i < count; ++i) {
-    while (!queue_.empty() && queue_.front().step <= sim_.steps()) {
-      apply(queue_.front());
-      queue_.pop_front();
-    }
-    // The timed actions, at the step their time comes.
-    if (settings_.tilt_timeout > 0 && commanded_ && !levelled_ &&
-        passed(settings_.tilt_timeout, last_command_time_)) {
-      sim_.setTargetTilt(0, 0);
-      levelled_ = true;
-      driving_rates_ = false;
-    }
-    if (settings_.rate_timeout > 0 && driving_rates_ &&
-        passed(settings_.rate_timeout, last_command_time_)) {
-      sim_.setTiltRate(0, 0);
-      driving_rates_ = false;
-    }
+    applyDueCommands();
+    applyTimeouts();
     sim_.step();
     events_.insert(events_.end(), sim_.events().begin(), sim_.events().end());
-    if (sim_.marble().phase == MarblePhase::Free) continue;
-    if (!finished_) {
-      finished_ = true;
-      finished_time_ = sim_.time();
-    }
-    if (settings_.auto_reset > 0 && passed(settings_.auto_reset, finished_time_)) reset();
+    resetAfterFinish();
   }
+}
+
+void Session::applyDueCommands() {
+  while (!queue_.empty() && queue_.front().step <= sim_.steps()) {
+    apply(queue_.front());
+    queue_.pop_front();
+  }
+}
+
+void Session::applyTimeouts() {
+  if (settings_.tilt_timeout > 0 && commanded_ && !levelled_ &&
+      passed(settings_.tilt_timeout, last_command_time_)) {
+    sim_.setTargetTilt(0, 0);
+    levelled_ = true;
+    driving_rates_ = false;
+  }
+  if (settings_.rate_timeout > 0 && driving_rates_ &&
+      passed(settings_.rate_timeout, last_command_time_)) {
+    sim_.setTiltRate(0, 0);
+    driving_rates_ = false;
+  }
+}
+
+void Session::resetAfterFinish() {
+  if (sim_.marble().phase == MarblePhase::Free) return;
+  if (!finished_) {
+    finished_ = true;
+    finished_time_ = sim_.time();
+  }
+  if (settings_.auto_reset > 0 && passed(settings_.auto_reset, finished_time_)) reset();
 }
 
 void Session::reset() {

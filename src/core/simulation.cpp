@@ -307,8 +307,7 @@ double Simulation::energy() const {
          m * params_.gravity * (position.z() + params_.board_position.z());
 }
 
-void Simulation::step() {
-  events_.clear();
+int Simulation::substepsFor() const {
   // A board that turns far in one step (a tilt snapping across its range) is taken in as many
   // more substeps as keep each turn within kMostTurn, turning that much in each: the sweep
   // follows a substep's motion relative to the board as a chord, near its arc only for small
@@ -338,6 +337,12 @@ void Simulation::step() {
       substeps =
           static_cast<int>(std::min(10000.0, std::ceil(rate * params_.step / kMostDragDecay)));
   }
+  return substeps;
+}
+
+void Simulation::step() {
+  events_.clear();
+  const int substeps = substepsFor();
   const double h = params_.step / substeps;
   substep_ = h;
   for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
@@ -347,23 +352,41 @@ void Simulation::step() {
 
 void Simulation::substep(double h, double start_time) {
   ++counts_.substeps;
+  const BoardMotion motion = moveBoard(h);
+  if (marble_.phase != MarblePhase::Free) {
+    rideWithBoard();
+    return;
+  }
+  gatherContacts(motion.start, h);
+  // A contact struck at the start (a board kicking the marble) is an impulse before the
+  // substep's forces act, so that the flight after it keeps the whole substep's gravity.
+  if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
+  turnContactsToForcePose(motion);
+  integrateToImpacts(h, start_time, motion);
+  turnMarble(h);
+  checkFinish(start_time + h);
+}
+
+Simulation::BoardMotion Simulation::moveBoard(double h) {
   // The board's pose at the start of the substep, moving as it moves over the substep (its
   // motion in the last one kept apart).
-  GridFrame start = frame_;
-  const Vec3 previous_spin = frame_.angular_velocity;
-  const double start_roll = board_.roll(), start_pitch = board_.pitch();
+  BoardMotion motion{frame_, frame_.angular_velocity, board_.roll(), board_.pitch()};
   board_.advance(h, kMostTurn);
   frame_.rotation = board_.rotation();  // the pivot stays where it is in the grid
   frame_.angular_velocity = board_.angularVelocity();
-  if (marble_.phase != MarblePhase::Free) {  // a finished marble rides along with the board
-    marble_.position = frame_.toWorld(held_in_grid_);
-    marble_.velocity = frame_.surfaceVelocity(marble_.position);
-    return;
-  }
+  motion.start.angular_velocity = frame_.angular_velocity;
+  return motion;
+}
+
+void Simulation::rideWithBoard() {
+  marble_.position = frame_.toWorld(held_in_grid_);
+  marble_.velocity = frame_.surfaceVelocity(marble_.position);
+}
+
+void Simulation::gatherContacts(const GridFrame& start, double h) {
   // Contacts against the board where it is at the start, moving as it moves over the substep;
   // and the tiles near enough for the substep's path to meet, about twice as far as it goes at
   // the marble's speed relative to the board (at most a radius, which bounds the lookup's cost).
-  start.angular_velocity = frame_.angular_velocity;
   // (Its speed is bounded by the sum of its components' sizes, which takes no square root: a
   // skin only decides which tiles are looked at, never what the step finds.)
   const double goes = (marble_.velocity - start.surfaceVelocity(marble_.position)).lpNorm<1>() * h +
@@ -374,9 +397,9 @@ void Simulation::substep(double h, double start_time) {
                &near_);
   marble_.contacts = static_cast<int>(contacts_.size());
   pushOut();
-  // A contact struck at the start (a board kicking the marble) is an impulse before the
-  // substep's forces act, so that the flight after it keeps the whole substep's gravity.
-  if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
+}
+
+void Simulation::turnContactsToForcePose(const BoardMotion& motion) {
   // The contacts' forces act over the substep while the board turns: they push along its normals
   // in its pose at the instant the scheme's forces belong to: the middle of the substep (the
   // midpoint rule), or for a velocity half a substep behind its position (semi-implicit Euler's,
@@ -385,22 +408,23 @@ void Simulation::substep(double h, double start_time) {
   // takes at its start). A rotation, not normals interpolated one by one: contacts at right
   // angles stay at right angles.
   const double at = 0.5 - integrator_->velocityLag();
-  if (at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0)) {
-    const Mat3 pose = Board::rotationFor(start_roll + at * (board_.roll() - start_roll),
-                                         start_pitch + at * (board_.pitch() - start_pitch));
-    // The board's velocity is taken where the marble's surface meets the normal in that pose,
-    // as findContacts takes it: so every contact asks one rigid motion of the marble. (Here,
-    // while the pose is at hand: the start's normals have done their work.)
-    for (Contact& c : contacts_) {
-      c.normal = product(pose, c.grid_normal);  // (the pose was just put together)
-      c.surface_velocity =
-          frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
-    }
+  if (!(at > 0 && !contacts_.empty() && !frame_.angular_velocity.isZero(0))) return;
+  const Mat3 pose =
+      Board::rotationFor(motion.start_roll + at * (board_.roll() - motion.start_roll),
+                         motion.start_pitch + at * (board_.pitch() - motion.start_pitch));
+  // The board's velocity is taken where the marble's surface meets the normal in that pose,
+  // as findContacts takes it: so every contact asks one rigid motion of the marble. (Here,
+  // while the pose is at hand: the start's normals have done their work.)
+  for (Contact& c : contacts_) {
+    c.normal = product(pose, c.grid_normal);  // (the pose was just put together)
+    c.surface_velocity =
+        frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
   }
-  advance(h, start_time, start, previous_spin);
+}
+
+void Simulation::turnMarble(double h) {
   if (params_.model == Model::Rolling && !marble_.angular_velocity.isZero(0))
     marble_.orientation = turnedBy(marble_.orientation, marble_.angular_velocity * h);
-  checkFinish(start_time + h);
 }
 
 void Simulation::pushOut() {
@@ -513,8 +537,7 @@ void Simulation::keepOnHeldContacts(Sweep* sweep) const {
   }
 }
 
-void Simulation::advance(double h, double start_time, const GridFrame& start,
-                         const Vec3& previous_spin) {
+void Simulation::integrateToImpacts(double h, double start_time, const BoardMotion& motion) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
   // stretch is swept from where the marble was on the board at the start (the board then in its
@@ -528,7 +551,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     // (After an impact the contacts are found in the end pose, and push along its normals over
     // what is left of the substep.)
     if (impacts == 0)
-      chooseActingContacts(rest, previous_spin);
+      chooseActingContacts(rest, motion.previous_spin);
     else
       chooseActingContacts(rest, frame_.angular_velocity);
     dynamics.beginStretch();
@@ -541,7 +564,7 @@ void Simulation::advance(double h, double start_time, const GridFrame& start,
     sweep.resting_rate = kRestingSpeed * rest;
     sweep.bend = frame_.rotation.transpose() * path.second;
     if (impacts == 0) {
-      sweep.from = start.toGrid(marble_.position);
+      sweep.from = motion.start.toGrid(marble_.position);
       sweep.path = frame_.toGrid(marble_.position + path.displacement()) - sweep.from - sweep.bend;
       keepOnHeldContacts(&sweep);
     } else {

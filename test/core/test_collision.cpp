@@ -328,6 +328,11 @@ TEST(TimeOfImpact, SaysWhyItFoundNothing) {
   EXPECT_EQ(state({0.01, 0.0275, 0.005}, {0.03, 0, 0}), ImpactState::Separated);  // short of it
   EXPECT_EQ(state({0.01, 0.0275, 1.0}, {0.1, 0, 0}), ImpactState::OffGrid);       // a metre above
   EXPECT_EQ(state({0.01, 0.0275, 0.005}, {0, 0, 0}), ImpactState::Still);
+  // 2 mm from the wall's face, 3 mm inside it: the overlap is findContacts' to resolve.
+  EXPECT_EQ(state({0.073, 0.0275, 0.005}, {-0.03, 0, 0}), ImpactState::Overlapped);
+  EXPECT_EQ(state({0.073, 0.0275, 0.005}, {0.001, 0, 0}), ImpactState::Overlapped);
+  // Two million radii in one sweep: more pieces than a walk takes.
+  EXPECT_EQ(state({0.01, 0.0275, 0.005}, {1e4, 0, 0}), ImpactState::GaveUp);
 }
 
 TEST(SweepSphere, RollingOverSeamsOfASunkenFloorHitsNothing) {

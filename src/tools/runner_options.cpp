@@ -1,13 +1,14 @@
 #include "runner_options.h"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <ostream>
-#include <set>
 #include <sstream>
 
 #include "marble_maze/in_quotes.h"
@@ -112,100 +113,122 @@ bool sameOutput(const std::string& a, const std::string& b) {
 
 }  // namespace
 
+namespace {
+
+/// The one value of a flag that takes one: a flag given again would silently undo the first.
+const std::string* once(const std::string& flag, const std::vector<std::string>& values) {
+  if (values.size() > 1)
+    throw UsageError(flag + ": given twice (" + inQuotes(values[1]) + " after the first)");
+  return values.empty() ? nullptr : &values.front();
+}
+
+double parseSeconds(const std::string& flag, const std::string& value) {
+  const double seconds = parseDouble(flag, value);
+  if (!(seconds >= 0 && seconds <= 1e6))
+    throw UsageError(flag + ": expected 0..1e6 seconds, got " + inQuotes(value));
+  return seconds;
+}
+
+std::pair<std::string, std::string> parseSet(const std::string& value) {
+  const auto eq = value.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw UsageError("--set: expected KEY=VALUE, got " + inQuotes(value));
+  std::pair<std::string, std::string> set(value.substr(0, eq), value.substr(eq + 1));
+  // Its own value (a key none knows, a value out of its range) is the --set's whatever the
+  // maze or bag it is set over.
+  try {
+    Params probe;
+    setParam(probe, set.first, set.second);
+  } catch (const ParamError& e) {
+    throw UsageError("--set " + std::string(e.what()));
+  }
+  return set;
+}
+
+TiltSchedule parseTilt(const std::string& value) {
+  const auto comma = value.find(',');
+  if (comma == std::string::npos || value.find(',', comma + 1) != std::string::npos)
+    throw UsageError("--tilt: expected ROLL,PITCH, got " + inQuotes(value));
+  return TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
+                      parseDouble("--tilt", value.substr(comma + 1)));
+}
+
+int parseEvery(const std::string& value) {
+  const double n = parseDouble("--every", value);
+  // Compared as doubles before any conversion: a cast of a number beyond int is undefined.
+  constexpr double kMostEvery = std::numeric_limits<int>::max();
+  if (n < 1 || n > kMostEvery || n != std::floor(n))
+    throw UsageError("--every: expected a whole number from 1 to " +
+                     std::to_string(std::numeric_limits<int>::max()) + ", got " + inQuotes(value));
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
 Options parseOptions(const std::vector<std::string>& args) {
   Options o;
-  std::set<std::string> given;
-  const std::size_t argc = args.size();
-  for (std::size_t i = 0; i < argc; ++i) {
-    const std::string& flag = args[i];
-    if (flag == "--help" || flag == "-h") {
-      o.help = true;
-      return o;
-    }
-    if (flag == "--quiet") {
-      o.quiet = true;
-      continue;
-    }
-    if (flag == "--check") {
-      o.check = true;
-      continue;
-    }
-    // The flag's value, the next argument; a flag known to take one is reported without it.
-    const auto value_of = [&]() -> const std::string& {
-      if (i + 1 >= argc) throw UsageError(flag + ": needs a value");
-      // (Only --set adds to what it gave; another given again would silently undo the first.)
-      if (!given.insert(flag).second && flag != "--set")
-        throw UsageError(flag + ": given twice (" + inQuotes(args[i + 1]) + " after the first)");
-      // Each is the whole tilt program: the one would silently replace the other.
-      if ((flag == "--tilt" && given.count("--tilt-csv")) ||
-          (flag == "--tilt-csv" && given.count("--tilt")))
-        throw UsageError(flag + ": not with " + (flag == "--tilt" ? "--tilt-csv" : "--tilt") +
-                         "; each gives the whole tilt program");
-      return args[++i];
-    };
-    if (flag == "--maze") {
-      o.maze = value_of();
-    } else if (flag == "--tilt") {
-      const std::string& value = value_of();
-      const auto comma = value.find(',');
-      if (comma == std::string::npos || value.find(',', comma + 1) != std::string::npos)
-        throw UsageError("--tilt: expected ROLL,PITCH, got " + inQuotes(value));
-      o.tilt = TiltSchedule(parseDouble("--tilt", value.substr(0, comma)),
-                            parseDouble("--tilt", value.substr(comma + 1)));
-    } else if (flag == "--tilt-csv") {
-      const std::string& value = value_of();
-      try {
-        o.tilt = TiltSchedule::load(value);
-      } catch (const std::runtime_error& e) {
-        throw UsageError(std::string("--tilt-csv: ") + e.what());
-      }
-    } else if (flag == "--set") {
-      const std::string& value = value_of();
-      const auto eq = value.find('=');
-      if (eq == std::string::npos || eq == 0)
-        throw UsageError("--set: expected KEY=VALUE, got " + inQuotes(value));
-      o.sets.emplace_back(value.substr(0, eq), value.substr(eq + 1));
-      // Its own value (a key none knows, a value out of its range) is the --set's whatever the
-      // maze or bag it is set over.
-      try {
-        Params probe;
-        setParam(probe, o.sets.back().first, o.sets.back().second);
-      } catch (const ParamError& e) {
-        throw UsageError("--set " + std::string(e.what()));
-      }
-    } else if (flag == "--duration") {
-      const std::string& value = value_of();
-      o.duration = parseDouble(flag, value);
-      if (!(o.duration >= 0 && o.duration <= 1e6))
-        throw UsageError("--duration: expected 0..1e6 seconds, got " + inQuotes(value));
-    } else if (flag == "--out") {
-      o.out = value_of();
-    } else if (flag == "--bag") {
-      o.bag = value_of();
-    } else if (flag == "--events") {
-      o.events = value_of();
-    } else if (flag == "--tilt-timeout" || flag == "--auto-reset") {
-      const std::string& value = value_of();
-      const double seconds = parseDouble(flag, value);
-      if (!(seconds >= 0 && seconds <= 1e6))
-        throw UsageError(flag + ": expected 0..1e6 seconds, got " + inQuotes(value));
-      (flag == "--tilt-timeout" ? o.tilt_timeout : o.auto_reset) = seconds;
-    } else if (flag == "--every") {
-      const std::string& value = value_of();
-      const double n = parseDouble(flag, value);
-      // Compared as doubles before any conversion: a cast of a number beyond int is undefined.
-      constexpr double kMostEvery = std::numeric_limits<int>::max();
-      if (n < 1 || n > kMostEvery || n != std::floor(n))
-        throw UsageError("--every: expected a whole number from 1 to " +
-                         std::to_string(std::numeric_limits<int>::max()) + ", got " +
-                         inQuotes(value));
-      o.every = static_cast<int>(n);
-    } else {
-      throw UsageError(flag.rfind("--", 0) == 0
-                           ? "unknown option " + inQuotes(flag) + " (see simulate --help)"
-                           : "unknown argument " + inQuotes(flag) + " (see simulate --help)");
+  CLI::App app;
+  app.set_help_flag();  // --help is answered by the caller, whatever else the line holds
+  app.allow_extras();   // an unknown flag is named below, as this tool names it
+  app.add_flag("-h,--help", o.help);
+  app.add_flag("--quiet", o.quiet);
+  app.add_flag("--check", o.check);
+  // Every value of every flag that takes one, each occurrence one value: checked below.
+  std::map<std::string, std::vector<std::string>> given;
+  for (const char* flag : {"--maze", "--tilt", "--tilt-csv", "--set", "--duration", "--out",
+                           "--events", "--every", "--tilt-timeout", "--auto-reset", "--bag"})
+    app.add_option(flag, given[flag])->allow_extra_args(false);
+  try {
+    app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // (CLI11 pops the back)
+  } catch (const CLI::ArgumentMismatch& e) {  // "FLAG: 1 required TEXT missing"
+    const std::string what = e.what();
+    throw UsageError(what.substr(0, what.find(':')) + ": needs a value");
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(std::string(e.what()) + " (see simulate --help)");
+  }
+  if (o.help) return o;
+  const std::vector<std::string> extras = app.remaining();
+  if (!extras.empty()) {
+    const std::string& extra = extras.front();
+    throw UsageError((extra.rfind("--", 0) == 0 ? "unknown option " : "unknown argument ") +
+                     inQuotes(extra) + " (see simulate --help)");
+  }
+  const auto value = [&](const char* flag) { return once(flag, given[flag]); };
+  if (const std::string* maze = value("--maze")) o.maze = *maze;
+  // Each is the whole tilt program: the one would silently replace the other (the later named).
+  const std::string *tilt = value("--tilt"), *tilt_csv = value("--tilt-csv");
+  if (tilt && tilt_csv) {
+    const auto later = std::find_if(
+        app.parse_order().rbegin(), app.parse_order().rend(), [](const CLI::Option* option) {
+          return option->get_name() == "--tilt" || option->get_name() == "--tilt-csv";
+        });
+    const bool csv_later = (*later)->get_name() == "--tilt-csv";
+    throw UsageError(
+        std::string(csv_later ? "--tilt-csv: not with --tilt" : "--tilt: not with --tilt-csv") +
+        "; each gives the whole tilt program");
+  }
+  if (tilt) o.tilt = parseTilt(*tilt);
+  if (tilt_csv) {
+    try {
+      o.tilt = TiltSchedule::load(*tilt_csv);
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--tilt-csv: ") + e.what());
     }
   }
+  for (const std::string& set : given["--set"]) o.sets.push_back(parseSet(set));
+  if (const std::string* duration = value("--duration")) {
+    o.duration = parseDouble("--duration", *duration);
+    if (!(o.duration >= 0 && o.duration <= 1e6))
+      throw UsageError("--duration: expected 0..1e6 seconds, got " + inQuotes(*duration));
+  }
+  if (const std::string* out = value("--out")) o.out = *out;
+  if (const std::string* events = value("--events")) o.events = *events;
+  if (const std::string* bag = value("--bag")) o.bag = *bag;
+  if (const std::string* every = value("--every")) o.every = parseEvery(*every);
+  if (const std::string* seconds = value("--tilt-timeout"))
+    o.tilt_timeout = parseSeconds("--tilt-timeout", *seconds);
+  if (const std::string* seconds = value("--auto-reset"))
+    o.auto_reset = parseSeconds("--auto-reset", *seconds);
   // Two CSVs in one file, or both on standard output, would be one garbled CSV.
   if (!o.out.empty() && !o.events.empty() && sameOutput(o.out, o.events))
     throw UsageError("--events: '" + o.events + "' is --out's too; the trajectory and the " +
@@ -215,7 +238,7 @@ Options parseOptions(const std::vector<std::string>& args) {
   if (!o.bag.empty())
     for (const char* flag :
          {"--maze", "--tilt", "--tilt-csv", "--duration", "--tilt-timeout", "--auto-reset"})
-      if (given.count(flag))
+      if (!given[flag].empty())
         throw UsageError(std::string(flag) + ": not with --bag, whose session sets it");
   // Other physics make other states: there is nothing the recording could confirm.
   if (o.check && !o.sets.empty())

@@ -47,7 +47,8 @@ MazeNode::MazeNode(ros::NodeHandle nh, const ros::NodeHandle& pnh) : written_(pn
     return place(p, v, w);
   };
   control.load = [this](const std::string& maze) { return load(maze); };
-  services_ = std::make_unique<SimServices>(nh, control);
+  services_ = std::make_unique<SimServices>(control);
+  services_->advertise(nh);
   reconfigure_ = std::make_unique<Reconfigure>(
       pnh, std::vector<mm::ParamInfo>{realTimeFactorKey()},
       [this](const Reconfigure::Changes& changes) { return reconfigure(changes); },

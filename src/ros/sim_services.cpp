@@ -23,7 +23,7 @@ mm::Vec3 vec(const geometry_msgs::Vector3& v) {
 
 }  // namespace
 
-SimServices::SimServices(ros::NodeHandle& nh, SimControl control) : control_(std::move(control)) {
+void SimServices::advertise(ros::NodeHandle& nh) {
   reset_ = nh.advertiseService("reset", &SimServices::onReset, this);
   pause_ = nh.advertiseService("pause", &SimServices::onPause, this);
   resume_ = nh.advertiseService("resume", &SimServices::onResume, this);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 
 #include "marble_maze/LoadMaze.h"
 #include "marble_maze/MarbleState.h"
@@ -30,9 +31,11 @@ struct SimControl {
 
 class SimServices {
  public:
-  SimServices(ros::NodeHandle& nh, SimControl control);
+  explicit SimServices(SimControl control) : control_(std::move(control)) {}
+  /// Offers the services under `nh`'s namespace.
+  void advertise(ros::NodeHandle& nh);
 
- private:
+  // What each call answers (callable without a master).
   bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onPause(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onResume(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
@@ -40,6 +43,7 @@ class SimServices {
   bool onPlace(marble_maze::PlaceMarble::Request& req, marble_maze::PlaceMarble::Response& res);
   bool onLoad(marble_maze::LoadMaze::Request& req, marble_maze::LoadMaze::Response& res);
 
+ private:
   SimControl control_;
   ros::ServiceServer reset_, pause_, resume_, step_, place_, load_;
 };

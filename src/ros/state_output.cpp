@@ -1,7 +1,5 @@
 #include "state_output.h"
 
-#include <nav_msgs/Odometry.h>
-#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
@@ -10,11 +8,14 @@
 #include "marble_maze/MazeEvent.h"
 #include "maze_description.h"
 #include "maze_markers.h"
+#include "state_messages.h"
 
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
-StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings) : settings_(settings) {
+StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings)
+    : settings_(settings),
+      frames_{settings.world_frame, settings.board_frame, settings.marble_frame} {
   // A publisher drops its oldest message past its queue: deep enough that a lockstep agent's
   // burst of commands (tilt's queue) is answered state for state, and that a recorder the
   // machine holds up for a moment loses none.
@@ -44,58 +45,13 @@ void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
   trail_.clear();
 }
 
-marble_maze::MarbleState StateOutput::stateOf(const mm::Simulation& sim,
-                                              const ros::Time& stamp) const {
-  const mm::Marble& m = sim.marble();
-  marble_maze::MarbleState state;
-  state.header.stamp = stamp;
-  state.header.frame_id = settings_.world_frame;
-  state.position = tf2::toMsg(sim.worldPosition());
-  tf2::toMsg(m.velocity, state.velocity);
-  tf2::toMsg(m.angular_velocity, state.angular_velocity);
-  state.position_in_board = tf2::toMsg(sim.marbleInBoard());
-  state.roll = sim.board().roll();
-  state.pitch = sim.board().pitch();
-  state.contacts = static_cast<std::uint8_t>(std::min(m.contacts, 255));
-  state.in_hole = m.phase == mm::MarblePhase::InHole;
-  state.at_goal = m.phase == mm::MarblePhase::AtGoal;
-  state.off_board = m.phase == mm::MarblePhase::OffBoard;
-  return state;
-}
-
 void StateOutput::publishState(const mm::Simulation& sim, const ros::Time& stamp) {
-  const mm::Marble& m = sim.marble();
-  state_pub_.publish(stateOf(sim, stamp));
-
-  nav_msgs::Odometry odom;  // the twist in the child frame, as REP 105's odometry has it
-  odom.header.stamp = stamp;
-  odom.header.frame_id = settings_.world_frame;
-  odom.child_frame_id = settings_.marble_frame;
-  odom.pose.pose.position = tf2::toMsg(sim.worldPosition());
-  odom.pose.pose.orientation = tf2::toMsg(m.orientation);
-  const mm::Mat3 to_marble = m.orientation.toRotationMatrix().transpose();
-  tf2::toMsg(mm::Vec3(to_marble * m.velocity), odom.twist.twist.linear);
-  tf2::toMsg(mm::Vec3(to_marble * m.angular_velocity), odom.twist.twist.angular);
-  odom_pub_.publish(odom);
-
+  state_pub_.publish(marbleStateMessage(sim, stamp, frames_));
+  odom_pub_.publish(odometryMessage(sim, stamp, frames_));
   if (stamp <= last_tf_stamp_) return;
   last_tf_stamp_ = stamp;
-  const mm::Mat3& board = sim.board().rotation();
-  Eigen::Isometry3d world_to_board = Eigen::Isometry3d::Identity();
-  world_to_board.linear() = board;
-  world_to_board.translation() = sim.params().board_position;
-  geometry_msgs::TransformStamped board_tf = tf2::eigenToTransform(world_to_board);
-  board_tf.header.stamp = stamp;
-  board_tf.header.frame_id = settings_.world_frame;
-  board_tf.child_frame_id = settings_.board_frame;
-  Eigen::Isometry3d board_to_marble = Eigen::Isometry3d::Identity();
-  board_to_marble.translation() = sim.marbleInBoard();
-  board_to_marble.linear() = board.transpose() * m.orientation.toRotationMatrix();
-  geometry_msgs::TransformStamped marble_tf = tf2::eigenToTransform(board_to_marble);
-  marble_tf.header.stamp = stamp;
-  marble_tf.header.frame_id = settings_.board_frame;
-  marble_tf.child_frame_id = settings_.marble_frame;
-  tf_.sendTransform({board_tf, marble_tf});
+  const auto transforms = boardAndMarbleTransforms(sim, stamp, frames_);
+  tf_.sendTransform({transforms[0], transforms[1]});
 }
 
 void StateOutput::publishMarkers(const mm::Simulation& sim, const ros::Time& stamp) {

@@ -13,6 +13,7 @@
 #include "marble_maze/session.h"
 #include "marble_maze/simulation.h"
 #include "node_settings.h"
+#include "state_messages.h"
 
 namespace marble_maze_ros {
 
@@ -27,7 +28,9 @@ class StateOutput {
   void publishDescription(const marble_maze::Simulation& sim);
   /// The marble's state as a message (stamped).
   marble_maze::MarbleState stateOf(const marble_maze::Simulation& sim,
-                                   const ros::Time& stamp) const;
+                                   const ros::Time& stamp) const {
+    return marbleStateMessage(sim, stamp, frames_);
+  }
   /// marble_state, odom and tf at `stamp`; tf only when the stamp is new (tf listeners refuse
   /// repeated stamps).
   void publishState(const marble_maze::Simulation& sim, const ros::Time& stamp);
@@ -48,6 +51,7 @@ class StateOutput {
 
  private:
   NodeSettings settings_;
+  Frames frames_;
   ros::Publisher state_pub_, odom_pub_, event_pub_, maze_pub_, maze_markers_pub_,
       marble_marker_pub_, live_markers_pub_;
   tf2_ros::TransformBroadcaster tf_;

@@ -1,6 +1,7 @@
 #include "tilt_input.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "marble_maze/params.h"
 #include "node_settings.h"
@@ -8,6 +9,31 @@
 
 namespace marble_maze_ros {
 namespace mm = marble_maze;
+
+Screened screenCommand(mm::TiltCommand::Kind kind, double roll, double pitch,
+                       const mm::Params& limits) {
+  const bool angles = kind == mm::TiltCommand::Kind::Angles;
+  const char* const roll_field = angles ? "roll" : "roll_rate";
+  const char* const pitch_field = angles ? "pitch" : "pitch_rate";
+  Screened screened;
+  if (!std::isfinite(roll) || !std::isfinite(pitch)) {
+    screened.refused = true;
+    screened.warning = std::string("refused ") + roll_field + "=" + mm::exactText(roll) + " " +
+                       pitch_field + "=" + mm::exactText(pitch) + " (not finite); " +
+                       (angles ? "the board keeps its tilt" : "nothing changed");
+    return screened;
+  }
+  // A rate limit of 0 is none.
+  const double limit = angles ? limits.tilt_limit : limits.tilt_rate_limit;
+  if (limit > 0 && (std::abs(roll) > limit || std::abs(pitch) > limit)) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%s=%g %s=%g %s beyond %s %g; clamped", roll_field, roll,
+                  pitch_field, pitch, angles ? "rad" : "rad/s",
+                  angles ? "tilt_limit" : "tilt_rate_limit", limit);
+    screened.warning = text;
+  }
+  return screened;
+}
 
 TiltInput::TiltInput(ros::NodeHandle& nh, Handler handler,
                      std::function<const mm::Params&()> limits, std::function<void()> refused)
@@ -40,44 +66,29 @@ void TiltInput::checkNoneLost(const std::string& topic, const std::string& publi
 }
 
 void TiltInput::onTilt(const ros::MessageEvent<const marble_maze::BoardTilt>& event) {
-  const marble_maze::BoardTilt::ConstPtr& msg = event.getConstMessage();
-  checkNoneLost(tilt_topic_, event.getPublisherName(), msg->header);
-  if (!std::isfinite(msg->roll) || !std::isfinite(msg->pitch)) {
-    MARBLE_MAZE_WARN_WALL_THROTTLE(
-        1.0, "%s: refused roll=%s pitch=%s (not finite); the board keeps its tilt",
-        tilt_topic_.c_str(), mm::exactText(msg->roll).c_str(), mm::exactText(msg->pitch).c_str());
-    refused_();
-    return;
-  }
-  const double limit = limits_().tilt_limit;
-  if (std::abs(msg->roll) > limit || std::abs(msg->pitch) > limit)
-    MARBLE_MAZE_WARN_WALL_THROTTLE(1.0,
-                                   "%s: roll=%g pitch=%g rad beyond tilt_limit %g rad; clamped",
-                                   tilt_topic_.c_str(), msg->roll, msg->pitch, limit);
-  pass(tilt_topic_, msg->header, mm::TiltCommand::Kind::Angles, msg->roll, msg->pitch);
+  const marble_maze::BoardTilt& msg = *event.getConstMessage();
+  take(tilt_topic_, event.getPublisherName(), msg.header, mm::TiltCommand::Kind::Angles, msg.roll,
+       msg.pitch);
 }
 
 void TiltInput::onTiltRate(const ros::MessageEvent<const marble_maze::BoardTiltRate>& event) {
-  const marble_maze::BoardTiltRate::ConstPtr& msg = event.getConstMessage();
-  checkNoneLost(rate_topic_, event.getPublisherName(), msg->header);
-  if (!std::isfinite(msg->roll_rate) || !std::isfinite(msg->pitch_rate)) {
-    MARBLE_MAZE_WARN_WALL_THROTTLE(
-        1.0, "%s: refused roll_rate=%s pitch_rate=%s (not finite); nothing changed",
-        rate_topic_.c_str(), mm::exactText(msg->roll_rate).c_str(),
-        mm::exactText(msg->pitch_rate).c_str());
+  const marble_maze::BoardTiltRate& msg = *event.getConstMessage();
+  take(rate_topic_, event.getPublisherName(), msg.header, mm::TiltCommand::Kind::Rates,
+       msg.roll_rate, msg.pitch_rate);
+}
+
+void TiltInput::take(const std::string& topic, const std::string& publisher,
+                     const std_msgs::Header& header, mm::TiltCommand::Kind kind, double roll,
+                     double pitch) {
+  checkNoneLost(topic, publisher, header);
+  const Screened screened = screenCommand(kind, roll, pitch, limits_());
+  if (screened.refused) {
+    MARBLE_MAZE_WARN_WALL_THROTTLE(1.0, "%s: %s", topic.c_str(), screened.warning.c_str());
     refused_();
     return;
   }
-  const double limit = limits_().tilt_rate_limit;
-  if (limit > 0 && (std::abs(msg->roll_rate) > limit || std::abs(msg->pitch_rate) > limit))
-    MARBLE_MAZE_WARN_WALL_THROTTLE(
-        1.0, "%s: roll_rate=%g pitch_rate=%g rad/s beyond tilt_rate_limit %g; clamped",
-        rate_topic_.c_str(), msg->roll_rate, msg->pitch_rate, limit);
-  pass(rate_topic_, msg->header, mm::TiltCommand::Kind::Rates, msg->roll_rate, msg->pitch_rate);
-}
-
-void TiltInput::pass(const std::string& topic, const std_msgs::Header& header,
-                     mm::TiltCommand::Kind kind, double roll, double pitch) {
+  if (!screened.warning.empty())
+    MARBLE_MAZE_WARN_WALL_THROTTLE(1.0, "%s: %s", topic.c_str(), screened.warning.c_str());
   last_ = ros::Time::now();
   ++received_;
   const double held = handler_(header.stamp.isZero() ? last_ : header.stamp, kind, roll, pitch);

@@ -21,6 +21,16 @@
 
 namespace marble_maze_ros {
 
+/// What a command's values call for: `refused` when not finite (nothing changes), `warning` when
+/// beyond the limit in force (the core clamps it) or refused. The warning names the fields; the
+/// caller puts the topic before it.
+struct Screened {
+  bool refused = false;
+  std::string warning;
+};
+Screened screenCommand(marble_maze::TiltCommand::Kind kind, double roll, double pitch,
+                       const marble_maze::Params& limits);
+
 class TiltInput {
  public:
   /// Takes a command; returns how long (s of the simulation's time) it is held before it acts.
@@ -45,7 +55,8 @@ class TiltInput {
   /// Counts and warns about the commands that `header`'s seq shows lost (see SeqGaps).
   void checkNoneLost(const std::string& topic, const std::string& publisher,
                      const std_msgs::Header& header);
-  void pass(const std::string& topic, const std_msgs::Header& header,
+  /// Screens a command and, unless refused, hands it on.
+  void take(const std::string& topic, const std::string& publisher, const std_msgs::Header& header,
             marble_maze::TiltCommand::Kind kind, double roll, double pitch);
 
   Handler handler_;

@@ -1,7 +1,7 @@
 # The two commands of the quick start, and a few more. Each installs what it lacks and builds.
 SHELL := /bin/bash
 .PHONY: all deps build test check demo bench instructions tradeoff soak fuzz screenshot lint \
-	format clean ws
+	format clean ws train
 
 all: build
 
@@ -51,6 +51,12 @@ fuzz: deps
 # The workspace's path, for: source "$$(make -s ws)/devel/setup.bash"
 ws:
 	@. scripts/workspace.sh && echo "$$WS"
+
+# PPO on generated mazes from marble_maze.agents: doc/learning_curve.png, MINUTES of training
+# (default 10), then a test on mazes it never saw.
+train: build
+	@. scripts/workspace.sh && use_workspace && \
+	  /usr/bin/python3 examples/train.py --minutes $${MINUTES:-10}
 
 screenshot: build
 	@bash scripts/screenshot.sh doc/demo.png 8

@@ -50,9 +50,9 @@ MazeNode::MazeNode(ros::NodeHandle nh, const ros::NodeHandle& pnh) : written_(pn
   services_ = std::make_unique<SimServices>(control);
   services_->advertise(nh);
   reconfigure_ = std::make_unique<Reconfigure>(
-      pnh, std::vector<mm::ParamInfo>{realTimeFactorKey()},
-      [this](const Reconfigure::Changes& changes) { return reconfigure(changes); },
+      time_->liveKeys(), [this](const Reconfigure::Changes& c) { return reconfigure(c); },
       [this](const std::string& key) { return valueOf(key); });
+  reconfigure_->advertise(pnh);
   health_ = std::make_unique<Health>(nh, [this] { return healthFigures(); });
 
   out_->publishScene(session_->simulation(), false);

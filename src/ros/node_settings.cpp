@@ -147,6 +147,9 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   s.own_clock = readFlag(pnh, "clock", s.own_clock);
   s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor,
                                   realTimeFactorKey().min, realTimeFactorKey().max);
+  if (!s.own_clock && pnh.hasParam("real_time_factor"))
+    ROS_WARN("%s is used only with %s; ignored", pnh.resolveName("real_time_factor").c_str(),
+             pnh.resolveName("clock").c_str());
   // (A period is taken in one callback: a longer one would hold the node up. The node also
   // bounds its count of steps, whatever the step.)
   s.lockstep = readNumber(pnh, "lockstep", s.lockstep, 0.0, 60.0);

@@ -17,6 +17,7 @@ class OwnClock : public TimePolicy {
   /// (or a slice's worth of steps), then /clock.
   void tick(const ros::WallTime& now);
   void resumed() override { aimFrom(ros::WallTime::now()); }
+  std::vector<marble_maze::ParamInfo> liveKeys() const override { return {realTimeFactorKey()}; }
   void realTimeFactorChanged() override { aimFrom(ros::WallTime::now()); }
   void fillHealth(HealthFigures* figures) const override;
 

@@ -1,7 +1,5 @@
 #include "reconfigure.h"
 
-#include <dynamic_reconfigure/ConfigDescription.h>
-
 namespace marble_maze_ros {
 namespace mm = marble_maze;
 
@@ -52,14 +50,25 @@ void add(const mm::ParamInfo& info, const std::string& value, dynamic_reconfigur
 
 }  // namespace
 
-Reconfigure::Reconfigure(ros::NodeHandle pnh, std::vector<mm::ParamInfo> extra,
+Reconfigure::Reconfigure(std::vector<mm::ParamInfo> extra,
                          std::function<std::string(const Changes&)> apply,
                          std::function<std::string(const std::string&)> current)
     : apply_(std::move(apply)), current_(std::move(current)) {
   for (const mm::ParamInfo& info : mm::paramInfos())
     if (info.live) keys_.push_back(info);
   keys_.insert(keys_.end(), extra.begin(), extra.end());
+}
 
+void Reconfigure::advertise(ros::NodeHandle pnh) {
+  descriptions_pub_ =
+      pnh.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
+  updates_pub_ = pnh.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
+  descriptions_pub_.publish(description());
+  publishUpdate();
+  set_srv_ = pnh.advertiseService("set_parameters", &Reconfigure::onSet, this);
+}
+
+dynamic_reconfigure::ConfigDescription Reconfigure::description() const {
   dynamic_reconfigure::ConfigDescription description;
   dynamic_reconfigure::Group group;
   group.name = "Default";
@@ -80,13 +89,7 @@ Reconfigure::Reconfigure(ros::NodeHandle pnh, std::vector<mm::ParamInfo> extra,
   description.max =
       config([](const mm::ParamInfo& i) { return i.choices.empty() ? mm::exactText(i.max) : ""; });
   description.dflt = config([this](const mm::ParamInfo& i) { return current_(i.key); });
-
-  descriptions_pub_ =
-      pnh.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
-  updates_pub_ = pnh.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
-  descriptions_pub_.publish(description);
-  publishUpdate();
-  set_srv_ = pnh.advertiseService("set_parameters", &Reconfigure::onSet, this);
+  return description;
 }
 
 dynamic_reconfigure::Config Reconfigure::config(
@@ -103,7 +106,8 @@ dynamic_reconfigure::Config Reconfigure::config(
 }
 
 void Reconfigure::publishUpdate() {
-  updates_pub_.publish(config([this](const mm::ParamInfo& i) { return current_(i.key); }));
+  if (updates_pub_)
+    updates_pub_.publish(config([this](const mm::ParamInfo& i) { return current_(i.key); }));
 }
 
 bool Reconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
@@ -121,7 +125,8 @@ bool Reconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
       if (!same) changes.emplace_back(key, value);
       return;
     }
-    ROS_WARN("reconfigure: '%s' cannot be changed while running; ignored", key.c_str());
+    ROS_WARN("reconfigure: '%s' is not a key this node changes while running; ignored",
+             key.c_str());
   };
   for (const auto& p : req.config.doubles) consider(p.name, mm::exactText(p.value));
   for (const auto& p : req.config.ints) consider(p.name, std::to_string(p.value));
@@ -136,7 +141,7 @@ bool Reconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
         ROS_INFO("reconfigure: %s = %s", key.c_str(), current_(key).c_str());
   }
   res.config = config([this](const mm::ParamInfo& i) { return current_(i.key); });
-  updates_pub_.publish(res.config);
+  if (updates_pub_) updates_pub_.publish(res.config);
   return true;
 }
 

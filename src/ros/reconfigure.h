@@ -6,6 +6,7 @@
 #pragma once
 
 #include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <ros/ros.h>
 
@@ -23,16 +24,26 @@ class Reconfigure {
   using Changes = std::vector<std::pair<std::string, std::string>>;  // key, value as text
   /// `apply` makes the changes (all or none) and returns "", or why not; `current` gives a
   /// key's value in force as text. `extra` are keys of the node's own, described like the core's.
-  Reconfigure(ros::NodeHandle pnh, std::vector<marble_maze::ParamInfo> extra,
+  Reconfigure(std::vector<marble_maze::ParamInfo> extra,
               std::function<std::string(const Changes&)> apply,
               std::function<std::string(const std::string&)> current);
+
+  /// Serves the protocol under the private node handle: the latched description and values in
+  /// force, and the set_parameters service.
+  void advertise(ros::NodeHandle pnh);
 
   /// Tells the clients the values in force (after a change made otherwise, such as a new maze).
   void publishUpdate();
 
- private:
+  /// Every live key with its type, help, choices, range and the value in force as its default.
+  dynamic_reconfigure::ConfigDescription description() const;
+
+  /// set_parameters: makes the keys whose values differ from those in force, all or none, and
+  /// answers with the values in force afterwards (the old ones when refused).
   bool onSet(dynamic_reconfigure::Reconfigure::Request& req,
              dynamic_reconfigure::Reconfigure::Response& res);
+
+ private:
   dynamic_reconfigure::Config config(
       const std::function<std::string(const marble_maze::ParamInfo&)>& value) const;
 

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "health.h"
 #include "marble_maze/session.h"
@@ -60,6 +61,8 @@ class TimePolicy {
   virtual void refused() {}
   virtual void paused() {}
   virtual void resumed() {}
+  /// The node's own keys that dynamic_reconfigure offers beside the core's under this policy.
+  virtual std::vector<marble_maze::ParamInfo> liveKeys() const { return {}; }
   /// The real-time factor in the settings changed live.
   virtual void realTimeFactorChanged() {}
   /// Whether a state is published after each step that makes one due (not in lockstep: after

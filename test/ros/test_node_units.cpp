@@ -1,12 +1,15 @@
 // The node's units that translate to and from ROS, without a ROS master: the tilt commands'
-// screening, the state's messages and transforms, and the services' answers.
+// screening, the state's messages and transforms, the services' answers and dynamic_reconfigure.
 #include <gtest/gtest.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
+#include "../../src/ros/reconfigure.h"
 #include "../../src/ros/sim_services.h"
 #include "../../src/ros/state_messages.h"
 #include "../../src/ros/tilt_input.h"
@@ -184,6 +187,122 @@ TEST(SimServices, PlacesWithThePositionVelocityAndSpinInTheirPlaces) {
   EXPECT_EQ(node.position, mm::Vec3(0.01, -0.02, 0.006));
   EXPECT_EQ(node.velocity, mm::Vec3(0.1, 0.2, 0.3));
   EXPECT_EQ(node.spin, mm::Vec3(4, 5, 6));
+}
+
+/// A node's parameters as dynamic_reconfigure sees them: the core's defaults and one key of the
+/// node's own, changed only when `why_not` is empty.
+struct LiveValues {
+  mm::Params params;
+  double factor = 1;
+  std::string why_not;
+  std::vector<Reconfigure::Changes> applied;
+  static mm::ParamInfo factorKey() {
+    return {"factor", "", "a node's own number", mm::ParamInfo::Type::Number, 0, 100, {}, true};
+  }
+
+  Reconfigure reconfigure() {
+    return Reconfigure(
+        {factorKey()},
+        [this](const Reconfigure::Changes& changes) {
+          applied.push_back(changes);
+          if (!why_not.empty()) return why_not;
+          for (const auto& [key, value] : changes)
+            key == "factor" ? void(factor = std::stod(value)) : mm::setParam(params, key, value);
+          return std::string();
+        },
+        [this](const std::string& key) {
+          return key == "factor" ? mm::exactText(factor) : mm::getParam(params, key);
+        });
+  }
+};
+
+/// A config's values by name, as text.
+std::map<std::string, std::string> valuesOf(const dynamic_reconfigure::Config& c) {
+  std::map<std::string, std::string> values;
+  for (const auto& p : c.doubles) values[p.name] = mm::exactText(p.value);
+  for (const auto& p : c.ints) values[p.name] = std::to_string(p.value);
+  for (const auto& p : c.strs) values[p.name] = p.value;
+  return values;
+}
+
+TEST(Reconfigure, DescribesEveryLiveKeyWithItsTypeRangeDefaultAndChoices) {
+  LiveValues node;
+  node.params.restitution = 0.7;  // the default is the value in force, not the table's
+  const dynamic_reconfigure::ConfigDescription d = node.reconfigure().description();
+  ASSERT_EQ(d.groups.size(), 1u);
+  std::vector<mm::ParamInfo> live;
+  for (const mm::ParamInfo& info : mm::paramInfos())
+    if (info.live) live.push_back(info);
+  live.push_back(LiveValues::factorKey());
+  ASSERT_EQ(d.groups[0].parameters.size(), live.size());
+  const auto min = valuesOf(d.min), max = valuesOf(d.max), dflt = valuesOf(d.dflt);
+  int choices = 0;
+  for (std::size_t i = 0; i < live.size(); ++i) {
+    const mm::ParamInfo& info = live[i];
+    const dynamic_reconfigure::ParamDescription& p = d.groups[0].parameters[i];
+    EXPECT_EQ(p.name, info.key);
+    const char* type = info.type == mm::ParamInfo::Type::Number  ? "double"
+                       : info.type == mm::ParamInfo::Type::Whole ? "int"
+                                                                 : "str";
+    EXPECT_EQ(p.type, type) << info.key;
+    EXPECT_TRUE(says(p.description, info.help)) << info.key;
+    const std::string value = info.key == "factor" ? "1" : mm::getParam(node.params, info.key);
+    EXPECT_EQ(dflt.at(info.key), value) << info.key;
+    if (info.type == mm::ParamInfo::Type::Number) {
+      EXPECT_EQ(min.at(info.key), mm::exactText(info.min)) << info.key;
+      EXPECT_EQ(max.at(info.key), mm::exactText(info.max)) << info.key;
+    }
+    if (info.type == mm::ParamInfo::Type::Whole) {
+      EXPECT_EQ(std::stod(min.at(info.key)), info.min) << info.key;
+      EXPECT_EQ(std::stod(max.at(info.key)), info.max) << info.key;
+    }
+    for (const std::string& name : info.choices) {  // the GUI's drop-down, one entry a choice
+      ++choices;
+      EXPECT_TRUE(says(p.edit_method, "'name': '" + name + "'")) << p.edit_method;
+    }
+    EXPECT_EQ(p.edit_method.empty(), info.choices.empty()) << info.key;
+  }
+  EXPECT_EQ(dflt.at("restitution"), "0.7");
+  EXPECT_GT(choices, 0);  // the model's and the integrator's names were seen
+}
+
+TEST(Reconfigure, AppliesOnlyWhatDiffersFromTheValuesInForce) {
+  LiveValues node;
+  Reconfigure reconfigure = node.reconfigure();
+  dynamic_reconfigure::Reconfigure::Request request;
+  dynamic_reconfigure::Reconfigure::Response response;
+  request.config = reconfigure.description().dflt;  // a client sends every value
+  EXPECT_TRUE(reconfigure.onSet(request, response));
+  EXPECT_TRUE(node.applied.empty());
+  for (auto& p : request.config.doubles)
+    if (p.name == "restitution") p.value = 0.25;
+  EXPECT_TRUE(reconfigure.onSet(request, response));
+  ASSERT_EQ(node.applied.size(), 1u);
+  EXPECT_EQ(node.applied[0], (Reconfigure::Changes{{"restitution", "0.25"}}));
+  EXPECT_EQ(node.params.restitution, 0.25);
+  EXPECT_EQ(valuesOf(response.config).at("restitution"), "0.25");
+}
+
+TEST(Reconfigure, ARefusedChangeAnswersWithTheValuesInForce) {
+  LiveValues node;
+  node.why_not = "restitution: 2 is out of range [0, 1]";
+  Reconfigure reconfigure = node.reconfigure();
+  dynamic_reconfigure::Reconfigure::Request request;
+  dynamic_reconfigure::Reconfigure::Response response;
+  dynamic_reconfigure::DoubleParameter restitution, factor;
+  restitution.name = "restitution", restitution.value = 2;
+  factor.name = "factor", factor.value = 4;
+  request.config.doubles = {restitution, factor};
+  dynamic_reconfigure::StrParameter unknown;  // not a live key: ignored, the rest considered
+  unknown.name = "maze", unknown.value = "classic";
+  request.config.strs = {unknown};
+  EXPECT_TRUE(reconfigure.onSet(request, response));
+  ASSERT_EQ(node.applied.size(), 1u);
+  EXPECT_EQ(node.applied[0], (Reconfigure::Changes{{"restitution", "2"}, {"factor", "4"}}));
+  const auto answered = valuesOf(response.config);
+  EXPECT_EQ(answered.at("restitution"), mm::getParam(mm::Params(), "restitution"));
+  EXPECT_EQ(answered.at("factor"), "1");
+  EXPECT_EQ(answered.count("maze"), 0u);
 }
 
 }  // namespace

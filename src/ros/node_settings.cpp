@@ -84,26 +84,14 @@ const std::set<std::string>& nodeKeys() {
 
 }  // namespace
 
-/// The frames make the chain world -> board -> marble of tf: each named, none twice, none with
-/// the leading '/' tf2 refuses. An empty or repeated frame would flood every tf listener with
-/// errors (TF_NO_FRAME_ID, TF_SELF_TRANSFORM) or make a cycle.
-void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& s) {
-  const std::pair<const char*, const std::string*> frames[] = {{"world_frame", &s.world_frame},
-                                                               {"board_frame", &s.board_frame},
-                                                               {"marble_frame", &s.marble_frame}};
-  for (std::size_t i = 0; i < 3; ++i) {
-    const std::string name = pnh.resolveName(frames[i].first);
-    const std::string& frame = *frames[i].second;
-    if (frame.empty()) throw std::runtime_error(name + ": a frame needs a name");
-    if (frame[0] == '/')
-      throw std::runtime_error(name + ": " + mm::inQuotes(frame) +
-                               " starts with '/', which tf2 refuses");
-    for (std::size_t j = 0; j < i; ++j)
-      if (frame == *frames[j].second)
-        throw std::runtime_error(name + ": " + mm::inQuotes(frame) + " is " +
-                                 pnh.resolveName(frames[j].first) +
-                                 " too; tf needs world -> board -> marble to be three frames");
-  }
+Frames readFrames(const ros::NodeHandle& pnh) {
+  Frames frames = framesIn(ros::names::parentNamespace(pnh.getNamespace()));
+  frames.world = readText(pnh, "world_frame", frames.world);
+  frames.board = readText(pnh, "board_frame", frames.board);
+  frames.marble = readText(pnh, "marble_frame", frames.marble);
+  const std::string why = whyNotAChain(frames);
+  if (!why.empty()) throw std::runtime_error(pnh.getNamespace() + "/" + why);
+  return frames;
 }
 
 void fitToLockstep(const NodeSettings& settings, mm::Params* params) {
@@ -140,10 +128,7 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   s.session.tilt_timeout = readNumber(pnh, "tilt_timeout", s.session.tilt_timeout, 0.0, 1e6);
   s.session.rate_timeout = readNumber(pnh, "rate_timeout", s.session.rate_timeout, 0.0, 1e6);
   s.session.auto_reset = readNumber(pnh, "auto_reset", s.session.auto_reset, 0.0, 1e6);
-  s.world_frame = readText(pnh, "world_frame", s.world_frame);
-  s.board_frame = readText(pnh, "board_frame", s.board_frame);
-  s.marble_frame = readText(pnh, "marble_frame", s.marble_frame);
-  checkFrames(pnh, s);
+  s.frames = readFrames(pnh);
   s.own_clock = readFlag(pnh, "clock", s.own_clock);
   s.real_time_factor = readNumber(pnh, "real_time_factor", s.real_time_factor,
                                   realTimeFactorKey().min, realTimeFactorKey().max);
@@ -214,9 +199,9 @@ std::vector<std::string> writeBack(const ros::NodeHandle& pnh, const NodeSetting
   put("tilt_timeout", s.session.tilt_timeout);
   put("rate_timeout", s.session.rate_timeout);
   put("auto_reset", s.session.auto_reset);
-  put("world_frame", s.world_frame);
-  put("board_frame", s.board_frame);
-  put("marble_frame", s.marble_frame);
+  put("world_frame", s.frames.world);
+  put("board_frame", s.frames.board);
+  put("marble_frame", s.frames.marble);
   put("clock", s.own_clock);
   put("real_time_factor", s.real_time_factor);
   put("lockstep", s.lockstep);

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "frames.h"
 #include "marble_maze/maze_file.h"
 #include "marble_maze/session.h"
 
@@ -23,8 +24,8 @@ struct NodeSettings {
   double publish_rate = 50.0;            // Hz of simulated time: marble_state, odom and tf
   double marker_rate = 10.0;             // Hz of simulated time: the marble's markers
   marble_maze::SessionSettings session;  // tilt_timeout, rate_timeout, auto_reset
-  std::string world_frame = "world", board_frame = "board", marble_frame = "marble";
-  bool own_clock = false;       // ~clock: the node owns /clock and runs free
+  Frames frames;                         // tf: world -> board -> marble
+  bool own_clock = false;                // ~clock: the node owns /clock and runs free
   double real_time_factor = 0;  // with ~clock: a multiple of real time; 0 = as fast as it can
   double lockstep = 0;          // s: each tilt command advances this much; 0 = off
   /// The core's keys given as private parameters, in the key table's order.
@@ -50,9 +51,9 @@ marble_maze::Scene sceneFor(const std::string& maze, const NodeSettings& setting
 /// In lockstep, the step shortened where it must be to divide ~lockstep's period into whole
 /// steps (marble_maze::stepDividing), so that every command advances exactly the period.
 void fitToLockstep(const NodeSettings& settings, marble_maze::Params* params);
-/// Throws std::runtime_error naming the parameter when the frames do not make the chain
-/// world -> board -> marble: one empty, starting with '/', or named as another.
-void checkFrames(const ros::NodeHandle& pnh, const NodeSettings& settings);
+/// ~world_frame, ~board_frame and ~marble_frame, by default as the node's namespace gives them
+/// (framesIn); throws std::runtime_error naming the parameter when they do not make the chain.
+Frames readFrames(const ros::NodeHandle& pnh);
 
 /// The burst of tilt commands a node takes in at once (its subscribers' queues), and so the
 /// states and events it may publish in answer at once (its publishers' queues).

@@ -13,6 +13,7 @@
 
 #include <memory>
 
+#include "clock_owner.h"
 #include "node_settings.h"
 #include "recording.h"
 #include "run_node.h"
@@ -36,12 +37,10 @@ class ReplayNode {
     NodeSettings settings;
     settings.publish_rate = recording_.scene.publish_rate;
     settings.marker_rate = recording_.scene.marker_rate;
-    settings.world_frame = marble_maze_ros::readText(pnh, "world_frame", settings.world_frame);
-    settings.board_frame = marble_maze_ros::readText(pnh, "board_frame", settings.board_frame);
-    settings.marble_frame = marble_maze_ros::readText(pnh, "marble_frame", settings.marble_frame);
-    checkFrames(pnh, settings);
+    settings.frames = marble_maze_ros::readFrames(pnh);
     out_ = std::make_unique<marble_maze_ros::StateOutput>(nh, settings);
     clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    marble_maze_ros::refuseSharedClock();
     out_->publishScene(replay_->session().simulation(), false);
     // (The recording's span is of ROS time: a session paused meanwhile simulated less.)
     ROS_INFO(

@@ -9,14 +9,11 @@
 #include <array>
 #include <string>
 
+#include "frames.h"
 #include "marble_maze/MarbleState.h"
 #include "marble_maze/simulation.h"
 
 namespace marble_maze_ros {
-
-struct Frames {
-  std::string world = "world", board = "board", marble = "marble";
-};
 
 /// Position and velocities in the world frame, the position in the board's too, the tilt, the
 /// contacts and the phase.

@@ -14,8 +14,7 @@ namespace marble_maze_ros {
 namespace mm = marble_maze;
 
 StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings)
-    : settings_(settings),
-      frames_{settings.world_frame, settings.board_frame, settings.marble_frame} {
+    : settings_(settings), tf_watch_(nh, settings.frames) {
   // A publisher drops its oldest message past its queue: deep enough that a lockstep agent's
   // burst of commands (tilt's queue) is answered state for state, and that a recorder the
   // machine holds up for a moment loses none.
@@ -29,16 +28,16 @@ StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings)
 }
 
 void StateOutput::publishDescription(const mm::Simulation& sim) {
-  maze_pub_.publish(describe({sim.maze(), sim.params()}, settings_.board_frame));
+  maze_pub_.publish(describe({sim.maze(), sim.params()}, settings_.frames.board));
 }
 
 void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
   publishDescription(sim);
-  visualization_msgs::MarkerArray markers = mazeMarkers(sim.maze(), settings_.board_frame);
+  visualization_msgs::MarkerArray markers = mazeMarkers(sim.maze(), settings_.frames.board);
   if (replacing) {  // the old maze's markers of kinds and sizes the new one lacks go
     visualization_msgs::Marker clear;
     clear.action = visualization_msgs::Marker::DELETEALL;
-    clear.header.frame_id = settings_.board_frame;
+    clear.header.frame_id = settings_.frames.board;
     markers.markers.insert(markers.markers.begin(), clear);
   }
   maze_markers_pub_.publish(markers);
@@ -46,17 +45,17 @@ void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
 }
 
 void StateOutput::publishState(const mm::Simulation& sim, const ros::Time& stamp) {
-  state_pub_.publish(marbleStateMessage(sim, stamp, frames_));
-  odom_pub_.publish(odometryMessage(sim, stamp, frames_));
+  state_pub_.publish(marbleStateMessage(sim, stamp, settings_.frames));
+  odom_pub_.publish(odometryMessage(sim, stamp, settings_.frames));
   if (stamp <= last_tf_stamp_) return;
   last_tf_stamp_ = stamp;
-  const auto transforms = boardAndMarbleTransforms(sim, stamp, frames_);
+  const auto transforms = boardAndMarbleTransforms(sim, stamp, settings_.frames);
   tf_.sendTransform({transforms[0], transforms[1]});
 }
 
 void StateOutput::publishMarkers(const mm::Simulation& sim, const ros::Time& stamp) {
   visualization_msgs::Marker marble =
-      marbleMarker(sim.params().marble_radius, settings_.marble_frame);
+      marbleMarker(sim.params().marble_radius, settings_.frames.marble);
   marble.header.stamp = stamp;
   marble_marker_pub_.publish(marble);
   // The trail: the last 3 s at the marker rate; a jump (a reset, a place) starts a new one.
@@ -66,7 +65,7 @@ void StateOutput::publishMarkers(const mm::Simulation& sim, const ros::Time& sta
   while (trail_.size() > 3 * settings_.marker_rate) trail_.pop_front();
   visualization_msgs::MarkerArray live =
       liveMarkers(sim.maze(), {trail_.begin(), trail_.end()}, sim.params().marble_radius,
-                  sim.board().roll(), sim.board().pitch(), settings_.board_frame);
+                  sim.board().roll(), sim.board().pitch(), settings_.frames.board);
   for (auto& m : live.markers) m.header.stamp = stamp;
   live_markers_pub_.publish(live);
 }
@@ -105,7 +104,7 @@ void StateOutput::publishDue(const mm::Session& session, const ros::Time& stamp,
 void StateOutput::publishEvent(const mm::Event& e, const ros::Time& stamp) {
   marble_maze::MazeEvent msg;
   msg.header.stamp = stamp;
-  msg.header.frame_id = settings_.board_frame;
+  msg.header.frame_id = settings_.frames.board;
   switch (e.kind) {
     case mm::EventKind::Collision:
       msg.kind = marble_maze::MazeEvent::COLLISION;

@@ -14,6 +14,7 @@
 #include "marble_maze/simulation.h"
 #include "node_settings.h"
 #include "state_messages.h"
+#include "tf_watch.h"
 
 namespace marble_maze_ros {
 
@@ -29,7 +30,7 @@ class StateOutput {
   /// The marble's state as a message (stamped).
   marble_maze::MarbleState stateOf(const marble_maze::Simulation& sim,
                                    const ros::Time& stamp) const {
-    return marbleStateMessage(sim, stamp, frames_);
+    return marbleStateMessage(sim, stamp, settings_.frames);
   }
   /// marble_state, odom and tf at `stamp`; tf only when the stamp is new (tf listeners refuse
   /// repeated stamps).
@@ -51,10 +52,10 @@ class StateOutput {
 
  private:
   NodeSettings settings_;
-  Frames frames_;
   ros::Publisher state_pub_, odom_pub_, event_pub_, maze_pub_, maze_markers_pub_,
       marble_marker_pub_, live_markers_pub_;
   tf2_ros::TransformBroadcaster tf_;
+  TfWatch tf_watch_;  // says when another node broadcasts these frames
   ros::Time last_tf_stamp_, last_state_stamp_, last_marker_stamp_;
   bool state_pending_ = false;
   std::deque<marble_maze::Vec3> trail_;  // the marble's recent board-frame positions

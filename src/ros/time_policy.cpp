@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "clock_owner.h"
 #include "follow_ros_time.h"
 #include "lockstep.h"
 #include "own_clock.h"
@@ -68,6 +69,7 @@ double TimePolicy::queueStamped(const ros::Time& stamp, mm::TiltCommand::Kind ki
 
 void TimePolicy::ownClock(ros::NodeHandle& nh) {
   clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  refuseSharedClock();
   c_.reanchor(ros::Time(0));
   c_.publish_state(stateStamp(), true);
   sayClock();

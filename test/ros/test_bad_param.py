@@ -19,6 +19,8 @@ import unittest
 import roslib.packages
 import rospy
 import rostest
+from rosgraph_msgs.msg import Clock
+from tf2_msgs.msg import TFMessage
 
 PKG = "marble_maze"
 EXIT_TIMEOUT = 20.0  # s of wall time: generous, for a loaded machine
@@ -134,6 +136,37 @@ class BadParamTest(unittest.TestCase):
 
     def test_a_frame_with_a_leading_slash(self):
         self.check_refused("bp_thirteen", ["_world_frame:=/world"], "world_frame", "'/'")
+
+    def test_a_frame_with_a_space(self):
+        self.check_refused("bp_spaced", ["_marble_frame:=my marble"], "marble_frame", "a space")
+
+    def test_a_second_clock_is_refused_naming_the_first(self):
+        first = self.start("bp_first_clock", "_clock:=true")
+        try:
+            rospy.wait_for_message("/clock", Clock, timeout=EXIT_TIMEOUT)  # the first owns it
+            self.check_refused("bp_second_clock", ["_clock:=true"], "/clock", "/bp_first_clock")
+            self.assertIsNone(first.poll(), "the first clock's node must run on")
+        finally:
+            self.stop(first)
+
+    def test_a_namespace_names_the_frames_and_a_second_authority_is_named(self):
+        # A node in namespace tfa broadcasts tfa/board and tfa/marble under the shared world;
+        # another told to broadcast the same frames is named by both.
+        own = self.start("bp_tf_own", "__ns:=/tfa")
+        other = self.start("bp_tf_other", "_board_frame:=tfa/board", "_marble_frame:=tfa/marble")
+        try:
+            seen = set()
+            deadline = rospy.get_time() + EXIT_TIMEOUT
+            while len(seen) < 2 and rospy.get_time() < deadline:
+                for t in rospy.wait_for_message("/tf", TFMessage, timeout=EXIT_TIMEOUT).transforms:
+                    if t.header.frame_id in ("world", "tfa/board"):
+                        seen.add((t.header.frame_id, t.child_frame_id))
+            self.assertEqual(seen, {("world", "tfa/board"), ("tfa/board", "tfa/marble")})
+            rospy.sleep(1.0)  # each sees the other's transforms
+        finally:
+            own_output, other_output = self.stop(own), self.stop(other)
+        self.assertIn("tf: /bp_tf_other broadcasts 'tfa/", own_output)
+        self.assertIn("tf: /tfa/bp_tf_own broadcasts 'tfa/", other_output)
 
     def test_a_start_position_inside_a_wall(self):
         # The classic maze's centre is a wall's post: tile (10, 8, 1).

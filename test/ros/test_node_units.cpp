@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 
+#include "../../src/ros/frames.h"
 #include "../../src/ros/reconfigure.h"
 #include "../../src/ros/sim_services.h"
 #include "../../src/ros/state_messages.h"
@@ -303,6 +304,41 @@ TEST(Reconfigure, ARefusedChangeAnswersWithTheValuesInForce) {
   EXPECT_EQ(answered.at("restitution"), mm::getParam(mm::Params(), "restitution"));
   EXPECT_EQ(answered.at("factor"), "1");
   EXPECT_EQ(answered.count("maze"), 0u);
+}
+
+TEST(Frames, ANamespaceGivesTheBoardAndTheMarbleItsNameAndSharesTheWorld) {
+  const Frames root = framesIn("/");
+  EXPECT_EQ((std::vector<std::string>{root.world, root.board, root.marble}),
+            (std::vector<std::string>{"world", "board", "marble"}));
+  const Frames nested = framesIn("/a/b");
+  EXPECT_EQ((std::vector<std::string>{nested.world, nested.board, nested.marble}),
+            (std::vector<std::string>{"world", "a/b/board", "a/b/marble"}));
+  EXPECT_EQ(whyNotAChain(root), "");
+  EXPECT_EQ(whyNotAChain(nested), "");
+}
+
+TEST(Frames, ABrokenChainIsRefusedNamingTheParameter) {
+  const auto why = [](const std::string& world, const std::string& board,
+                      const std::string& marble) {
+    return whyNotAChain({world, board, marble});
+  };
+  EXPECT_EQ(why("", "board", "marble"), "world_frame: a frame needs a name");
+  EXPECT_TRUE(says(why("world", "/board", "marble"), "board_frame: '/board' starts with '/'"));
+  EXPECT_TRUE(says(why("world", "board", "my marble"), "marble_frame: 'my marble' holds a space"));
+  EXPECT_TRUE(says(why("world", "board\t", "marble"), "board_frame:"));
+  EXPECT_TRUE(says(why("world", "board", "board"), "marble_frame: 'board' is board_frame too"));
+  EXPECT_EQ(why("welt", "brett/ü", "kugel"), "");  // any other character is a name's
+}
+
+TEST(Frames, FindsTheBoardOrTheMarbleInATfMessage) {
+  const Frames frames = framesIn("/a");
+  tf2_msgs::TFMessage message;
+  message.transforms.resize(2);
+  message.transforms[0].child_frame_id = "b/board";  // another namespace's
+  message.transforms[1].child_frame_id = "marble";
+  EXPECT_EQ(ownFrameIn(message, frames), "");
+  message.transforms[1].child_frame_id = "a/marble";
+  EXPECT_EQ(ownFrameIn(message, frames), "a/marble");
 }
 
 }  // namespace

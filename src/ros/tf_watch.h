@@ -1,0 +1,24 @@
+// Listens on /tf for another node broadcasting this node's board or marble frame, and says so,
+// naming it: with two authorities for one frame, every tf listener's lookups alternate between
+// them (TF_REPEATED_DATA), and nothing else would tell.
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include "frames.h"
+
+namespace marble_maze_ros {
+
+class TfWatch {
+ public:
+  TfWatch(ros::NodeHandle& nh, Frames frames);
+
+ private:
+  void onTf(const ros::MessageEvent<const tf2_msgs::TFMessage>& event);
+
+  Frames frames_;
+  ros::Subscriber tf_sub_;
+};
+
+}  // namespace marble_maze_ros

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "marble_maze/maze_file.h"
+#include "marble_maze/raster.h"
 #include "marble_maze/route_planner.h"
+#include "marble_maze/sensors.h"
 #include "marble_maze/session.h"
 
 namespace marble_maze {
@@ -34,6 +36,8 @@ struct AgentEnvOptions {
     double low = 0, high = 0;
   };
   std::vector<Range> ranges;
+  /// What the agent's sensors make of the state: delay, camera rate, noise, tilt quantisation.
+  SensorOptions sensors;
 };
 
 /// The route to the goal from every column of a maze, planned once: where the marble should go
@@ -64,6 +68,8 @@ class AgentEnv {
  public:
   /// The observation, in this order (SI units, board frame): the marble's x, y; its vx, vy; the
   /// board's roll, pitch; the target roll, pitch; the next waypoint's dx, dy from the marble.
+  /// The marble's values and the waypoint's are the camera's frame as the sensors deliver it,
+  /// the roll and pitch as the servos report them; the target is the agent's own command.
   static constexpr int kObservationSize = 10;
   static constexpr int kActionSize = 2;
 
@@ -85,6 +91,13 @@ class AgentEnv {
   /// to the tilt rate limit with tilt_rates; clipped to [-1, 1]).
   Outcome step(const double* action);
   void observe(float* out) const;
+  /// The camera's values as they are, before the sensors: x, y, vx, vy, dx, dy.
+  Sensors::Frame truth() const;
+  /// The top-down picture of the maze (Raster's planes) with the marble where the camera's
+  /// frame as the agent sees it has it.
+  void draw(const Raster& raster, std::uint8_t* out) const {
+    raster.draw(seen_[0], seen_[1], session_.simulation().params().marble_radius, out);
+  }
 
   const Session& session() const { return session_; }
   /// The steps a control period takes, and their length: the preset's step shortened to the
@@ -103,6 +116,9 @@ class AgentEnv {
   double distance_ = 0;  // along the route, at the last period's end
   Params nominal_;       // the scene's physics, which the ranges vary about
   std::uint64_t seed_ = 0, index_ = 0, episode_ = 0;
+  std::uint64_t random_ = 0;  // the episode's stream: its ranges, its start, its sensors' draws
+  Sensors sensors_;
+  Sensors::Frame seen_{};  // the camera's frame as the agent sees it now
 };
 
 /// The scene an environment runs: the maze with the preset and the sets over its physics, its

@@ -24,12 +24,26 @@ Every episode starts with the marble at rest and the board level. randomize vari
 {"friction": (0.2, 0.4), ...} draws each key of the key table uniformly from its range. The
 n-th episode of environment i after reset(seed) depends on (seed, i, n) alone: the same bit for
 bit whatever num_threads.
+
+observation models the sensors of a real board: {"delay_periods": 2, "delay_jitter": 1} shows
+the camera's values (x, y, vx, vy, dx, dy) 2 to 3 control periods late, a jitter drawn each
+period that never shows an older frame after a newer one; {"camera_rate": 30} takes a frame 30
+times a second and holds it between; {"position_noise": 0.001} adds Gaussian noise of 1 mm to
+each frame's x and y; {"tilt_quantum": math.radians(1)} reports the board's roll and pitch in
+whole degrees. The target tilt is the agent's own command, exact. Every draw comes from the
+episode's seed.
+
+images(pixel=0.002) gives what a camera above the board sees, for agents that learn from pixels:
+uint8 [num_envs, 4, height, width] (MazeEnv: [4, height, width]), planes walls, holes, goals and
+the marble (255 where each is), row 0 along the board's +y edge, at pixel metres a side; the
+marble is where the camera's frame, as the observation model delivers it, has it.
 """
 import numpy as np
 
 from marble_maze import _agents
 
 OBSERVATION_SIZE = _agents.OBSERVATION_SIZE
+IMAGE_CHANNELS = _agents.IMAGE_CHANNELS
 ACTION_SIZE = 2
 
 try:  # the spaces and base classes of Gymnasium where it is installed, the same API where not
@@ -64,8 +78,12 @@ except ImportError:
     _EnvBase = _VectorEnvBase = object
 
 
+SENSOR_OPTIONS = ("delay_periods", "delay_jitter", "camera_rate", "position_noise",
+                  "tilt_quantum")
+
+
 def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds, tilt_rates,
-          progress_reward, hole_penalty, goal_bonus, sets, randomize):
+          progress_reward, hole_penalty, goal_bonus, sets, randomize, observation):
     o = _agents.Options()
     o.maze, o.preset = str(maze), str(preset)
     o.control_rate, o.max_episode_seconds = float(control_rate), float(max_episode_seconds)
@@ -80,6 +98,13 @@ def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds
     o.random_start = start == "random"
     o.ranges = [_agents.Range(str(k), float(low), float(high))
                 for k, (low, high) in randomize.items()]
+    sensors = _agents.SensorOptions()
+    for key, value in (observation or {}).items():
+        if key not in SENSOR_OPTIONS:
+            raise ValueError("observation: %r: expected one of %s"
+                             % (key, ", ".join(SENSOR_OPTIONS)))
+        setattr(sensors, key, int(value) if key.startswith("delay") else float(value))
+    o.sensors = sensors
     return _agents.VectorEnv(int(num_envs), o, int(num_threads))
 
 
@@ -91,9 +116,10 @@ class VectorMazeEnv(_VectorEnvBase):
     def __init__(self, num_envs, maze="classic", preset="fast", control_rate=55.0,
                  max_episode_seconds=60.0, seed=0, randomize=None, tilt_rates=False,
                  num_threads=1, progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0,
-                 sets=None):
+                 sets=None, observation=None):
         self._env = _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds,
-                          tilt_rates, progress_reward, hole_penalty, goal_bonus, sets, randomize)
+                          tilt_rates, progress_reward, hole_penalty, goal_bonus, sets, randomize,
+                          observation)
         self.num_envs = self._env.num_envs
         self.single_observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.single_action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
@@ -122,6 +148,10 @@ class VectorMazeEnv(_VectorEnvBase):
             info["_final_observation"] = done
         return obs, reward, terminated, truncated, info
 
+    def images(self, pixel=0.002):
+        """The top-down pictures of every environment: uint8 [num_envs, 4, height, width]."""
+        return self._env.images(float(pixel))
+
     def simulated_time(self, i):
         """Simulated seconds of environment i since its creation (resets keep time going)."""
         return self._env.simulated_time(i)
@@ -141,9 +171,9 @@ class MazeEnv(_EnvBase):
 
     def __init__(self, maze="classic", preset="fast", control_rate=55.0, max_episode_seconds=60.0,
                  seed=0, randomize=None, tilt_rates=False, progress_reward=10.0,
-                 hole_penalty=1.0, goal_bonus=1.0, sets=None):
+                 hole_penalty=1.0, goal_bonus=1.0, sets=None, observation=None):
         self._env = _make(1, 1, maze, preset, control_rate, max_episode_seconds, tilt_rates,
-                          progress_reward, hole_penalty, goal_bonus, sets, randomize)
+                          progress_reward, hole_penalty, goal_bonus, sets, randomize, observation)
         self._seed = seed
         self.observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
@@ -162,6 +192,10 @@ class MazeEnv(_EnvBase):
         # (Gymnasium's Env is reset by its caller: the episode's last observation is returned.)
         return (final[0] if done else obs[0]), float(reward[0]), bool(terminated[0]), \
             bool(truncated[0]), {}
+
+    def images(self, pixel=0.002):
+        """The top-down picture: uint8 [4, height, width] (walls, holes, goals, marble)."""
+        return self._env.images(float(pixel))[0]
 
     def render(self):
         return None

@@ -71,7 +71,11 @@ Scene agentScene(const AgentEnvOptions& options) {
 
 AgentEnv::AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
                    const AgentEnvOptions& options)
-    : session_(scene), route_(std::move(route)), options_(options), nominal_(scene.params) {
+    : session_(scene),
+      route_(std::move(route)),
+      options_(options),
+      nominal_(scene.params),
+      sensors_(options.sensors, options.control_rate) {
   steps_per_period_ = static_cast<int>(std::llround(1.0 / options.control_rate / step()));
   max_periods_ = static_cast<int>(std::llround(options.max_episode_seconds * options.control_rate));
   reset();
@@ -96,11 +100,8 @@ void AgentEnv::seed(std::uint64_t seed, std::uint64_t index) {
 }
 
 void AgentEnv::reset() {
-  std::uint64_t draw = mix(mix(mix(seed_) ^ index_) ^ episode_++);
-  const auto uniform = [&draw] {
-    draw = mix(draw);
-    return static_cast<double>(draw >> 11) * 0x1p-53;  // [0, 1)
-  };
+  random_ = mix(mix(mix(seed_) ^ index_) ^ episode_++);
+  const auto uniform = [this] { return uniformDraw(&random_); };
   if (!options_.ranges.empty()) {
     Params params = nominal_;
     for (const AgentEnvOptions::Range& r : options_.ranges)
@@ -119,6 +120,7 @@ void AgentEnv::reset() {
   target_roll_ = target_pitch_ = 0;
   const Vec3 p = session_.simulation().marbleInBoard();
   distance_ = route_->distance(Vec2(p.x(), p.y()));
+  seen_ = sensors_.restart(truth(), &random_);
 }
 
 AgentEnv::Outcome AgentEnv::step(const double* action) {
@@ -161,26 +163,32 @@ AgentEnv::Outcome AgentEnv::step(const double* action) {
       break;
   }
   outcome.truncated = !outcome.terminated && periods_ >= max_periods_;
+  seen_ = sensors_.see(truth(), &random_);
   return outcome;
 }
 
-void AgentEnv::observe(float* out) const {
+Sensors::Frame AgentEnv::truth() const {
   const Simulation& sim = session_.simulation();
   const Vec3 p = sim.marbleInBoard();
   const Vec3 v = sim.board().rotation().transpose() * sim.marble().velocity;
   Vec2 waypoint(p.x(), p.y());
   double rest = 0;
   route_->next(Vec2(p.x(), p.y()), &waypoint, &rest);
-  const double values[kObservationSize] = {p.x(),
-                                           p.y(),
-                                           v.x(),
-                                           v.y(),
-                                           sim.board().roll(),
-                                           sim.board().pitch(),
+  return {p.x(), p.y(), v.x(), v.y(), waypoint.x() - p.x(), waypoint.y() - p.y()};
+}
+
+void AgentEnv::observe(float* out) const {
+  const Board& board = session_.simulation().board();
+  const double values[kObservationSize] = {seen_[0],
+                                           seen_[1],
+                                           seen_[2],
+                                           seen_[3],
+                                           sensors_.measuredTilt(board.roll()),
+                                           sensors_.measuredTilt(board.pitch()),
                                            target_roll_,
                                            target_pitch_,
-                                           waypoint.x() - p.x(),
-                                           waypoint.y() - p.y()};
+                                           seen_[4],
+                                           seen_[5]};
   for (int k = 0; k < kObservationSize; ++k) out[k] = static_cast<float>(values[k]);
 }
 

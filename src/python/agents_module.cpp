@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -52,6 +53,23 @@ class VectorEnv {
     return py::make_tuple(obs, rewards, terminated, truncated, final_obs);
   }
 
+  /// The environments' pictures, uint8 [N, channels, height, width], at `pixel` metres.
+  py::array_t<std::uint8_t> images(double pixel) {
+    if (!raster_ || raster_pixel_ != pixel) {
+      raster_ = std::make_unique<mm::Raster>(simulation(0).maze(), pixel);
+      raster_pixel_ = pixel;
+    }
+    const py::ssize_t n = env_.size(), h = raster_->height(), w = raster_->width();
+    py::array_t<std::uint8_t> out({n, py::ssize_t{mm::Raster::kChannels}, h, w});
+    std::uint8_t* data = out.mutable_data();
+    {
+      py::gil_scoped_release release;
+      for (int i = 0; i < env_.size(); ++i)
+        env_.env(i).draw(*raster_, data + i * mm::Raster::kChannels * h * w);
+    }
+    return out;
+  }
+
   int size() const { return env_.size(); }
   const mm::Simulation& simulation(int i) const { return env_.env(i).session().simulation(); }
   int stepsPerPeriod() const { return env_.env(0).stepsPerPeriod(); }
@@ -65,6 +83,8 @@ class VectorEnv {
   }
 
   mm::VectorAgentEnv env_;
+  std::unique_ptr<mm::Raster> raster_;  // the last pixel size's
+  double raster_pixel_ = 0;
 };
 
 }  // namespace
@@ -72,6 +92,7 @@ class VectorEnv {
 PYBIND11_MODULE(_agents, m) {
   m.doc() = "The marble_maze core's environments for learning agents (see marble_maze.agents).";
   m.attr("OBSERVATION_SIZE") = mm::AgentEnv::kObservationSize;
+  m.attr("IMAGE_CHANNELS") = mm::Raster::kChannels;
   py::register_exception<mm::ParamError>(m, "ParamError", PyExc_ValueError);
   py::register_exception<mm::MazeFileError>(m, "MazeFileError", PyExc_ValueError);
   py::class_<mm::AgentEnvOptions::Range>(m, "Range")
@@ -79,6 +100,13 @@ PYBIND11_MODULE(_agents, m) {
              return mm::AgentEnvOptions::Range{key, low, high};
            }),
            py::arg("key"), py::arg("low"), py::arg("high"));
+  py::class_<mm::SensorOptions>(m, "SensorOptions")
+      .def(py::init<>())
+      .def_readwrite("delay_periods", &mm::SensorOptions::delay_periods)
+      .def_readwrite("delay_jitter", &mm::SensorOptions::delay_jitter)
+      .def_readwrite("camera_rate", &mm::SensorOptions::camera_rate)
+      .def_readwrite("position_noise", &mm::SensorOptions::position_noise)
+      .def_readwrite("tilt_quantum", &mm::SensorOptions::tilt_quantum);
   py::class_<mm::AgentEnvOptions>(m, "Options")
       .def(py::init<>())
       .def_readwrite("maze", &mm::AgentEnvOptions::maze)
@@ -91,12 +119,14 @@ PYBIND11_MODULE(_agents, m) {
       .def_readwrite("hole_penalty", &mm::AgentEnvOptions::hole_penalty)
       .def_readwrite("goal_bonus", &mm::AgentEnvOptions::goal_bonus)
       .def_readwrite("random_start", &mm::AgentEnvOptions::random_start)
-      .def_readwrite("ranges", &mm::AgentEnvOptions::ranges);
+      .def_readwrite("ranges", &mm::AgentEnvOptions::ranges)
+      .def_readwrite("sensors", &mm::AgentEnvOptions::sensors);
   py::class_<VectorEnv>(m, "VectorEnv")
       .def(py::init<int, const mm::AgentEnvOptions&, int>(), py::arg("num_envs"),
            py::arg("options"), py::arg("num_threads"))
       .def("reset", &VectorEnv::reset, py::arg("seed") = py::none())
       .def("step", &VectorEnv::step)
+      .def("images", &VectorEnv::images, py::arg("pixel"))
       .def_property_readonly("num_envs", &VectorEnv::size)
       .def_property_readonly("steps_per_period", &VectorEnv::stepsPerPeriod)
       .def_property_readonly("step_length", &VectorEnv::stepLength)

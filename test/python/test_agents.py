@@ -147,7 +147,106 @@ class AgentsTest(unittest.TestCase):
         again = agents.VectorMazeEnv(2, maze="generated:seed=3,cells=5x5").reset()[0]
         np.testing.assert_array_equal(obs, again)
 
+    def observed(self, observation, periods=300, envs=8):
+        """The observations of environments with `observation`'s sensors beside exact ones, both
+        steered by the exact ones (so the same physics): arrays [period, env, value], and
+        whether each environment is still in its first episode at each period."""
+        exact = agents.VectorMazeEnv(envs, seed=4, randomize={"start": "random"})
+        model = agents.VectorMazeEnv(envs, seed=4, randomize={"start": "random"},
+                                     observation=observation)
+        truth, seen = [exact.reset()[0]], [model.reset()[0]]
+        alive = [np.ones(envs, bool)]
+        rng = np.random.default_rng(2)
+        for _ in range(periods):
+            actions = np.clip(steer(truth[-1]) + rng.normal(0, 0.3, (envs, 2)), -1, 1)
+            obs, _, terminated, truncated, _ = exact.step(actions)
+            truth.append(obs)
+            seen.append(model.step(actions)[0])
+            alive.append(alive[-1] & ~(terminated | truncated))
+        alive = np.array(alive)
+        self.assertGreater(alive.sum(), 1000)  # enough periods to measure
+        return np.array(truth), np.array(seen), alive
+
+    def test_a_delay_shows_the_camera_periods_late_and_the_tilt_at_once(self):
+        truth, seen, alive = self.observed({"delay_periods": 2})
+        camera = [0, 1, 2, 3, 8, 9]
+        late = alive[2:]
+        np.testing.assert_array_equal(seen[2:][late][:, camera], truth[:-2][late][:, camera])
+        np.testing.assert_array_equal(seen[alive][:, 4:8], truth[alive][:, 4:8])  # the tilt
+        self.assertFalse(np.array_equal(seen[2:][late][:, 0], truth[2:][late][:, 0]))  # lagged
+
+    def test_jitter_draws_each_lag_in_its_range(self):
+        truth, seen, alive = self.observed({"delay_periods": 1, "delay_jitter": 2})
+        lags = set()
+        for k, i in zip(*np.nonzero(alive)):
+            if k < 3:
+                continue
+            lag = [d for d in (1, 2, 3) if seen[k, i, 0] == truth[k - d, i, 0]]
+            self.assertTrue(lag, "period %d env %d: a frame not 1 to 3 periods old" % (k, i))
+            lags.add(lag[0])
+        self.assertEqual(lags, {1, 2, 3})
+
+    def test_a_slower_camera_holds_its_frame(self):
+        truth, seen, alive = self.observed({"camera_rate": 11.0})  # every fifth period at 55 Hz
+        for k, i in zip(*np.nonzero(alive)):
+            np.testing.assert_array_equal(seen[k, i, :4], truth[k - k % 5, i, :4])
+
+    def test_position_noise_has_its_deviation(self):
+        truth, seen, alive = self.observed({"position_noise": 0.001})
+        noise = (seen[alive][:, :2] - truth[alive][:, :2]).ravel()
+        print("position noise: mean %.2e m, deviation %.4e m over %d" %
+              (noise.mean(), noise.std(), noise.size))
+        self.assertLess(abs(noise.mean()), 4 * 0.001 / np.sqrt(noise.size))
+        self.assertAlmostEqual(noise.std(), 0.001, delta=0.0001)  # float32 and sampling: 10%
+        np.testing.assert_array_equal(seen[alive][:, 2:8], truth[alive][:, 2:8])  # the rest
+
+    def test_the_tilt_is_reported_in_whole_degrees(self):
+        quantum = np.radians(1.0)
+        truth, seen, alive = self.observed({"tilt_quantum": quantum})
+        tilt = seen[alive][:, 4:6].astype(np.float64)
+        exact = truth[alive][:, 4:6].astype(np.float64)
+        np.testing.assert_allclose(tilt / quantum, np.round(tilt / quantum), atol=1e-5)
+        self.assertLessEqual(np.abs(tilt - exact).max(), quantum / 2 + 1e-6)
+        self.assertGreater(len(np.unique(np.round(tilt / quantum))), 3)  # the board did turn
+        np.testing.assert_array_equal(seen[alive][:, 6:8], truth[alive][:, 6:8])  # the target
+
+    def test_images_show_the_maze_and_the_marble_where_the_camera_has_it(self):
+        pixel = 0.002
+        envs = agents.VectorMazeEnv(4, seed=1, randomize={"start": "random"},
+                                    observation={"delay_periods": 3})
+        obs, _ = envs.reset()
+        for _ in range(20):
+            obs = envs.step(np.full((4, 2), 0.3))[0]
+        images = envs.images(pixel)
+        n, channels, height, width = images.shape
+        self.assertEqual((n, channels, images.dtype), (4, agents.IMAGE_CHANNELS, np.uint8))
+        self.assertTrue(set(np.unique(images)) <= {0, 255})
+        walls, holes, goals, marbles = (images[:, c] > 0 for c in range(4))
+        # The classic maze: 0.28 x 0.23 m with a wall all round, holes and one goal.
+        self.assertAlmostEqual(width * pixel, 0.28, delta=0.02)
+        self.assertAlmostEqual(height * pixel, 0.23, delta=0.02)
+        for edge in (walls[:, 0, :], walls[:, -1, :], walls[:, :, 0], walls[:, :, -1]):
+            self.assertTrue(edge.all())
+        self.assertTrue(holes.any() and goals.any())
+        self.assertFalse((walls & holes).any() or (holes & goals).any())
+        for i in range(n):  # the marble: a disc of its radius at the observed x, y
+            rows, cols = np.nonzero(marbles[i])
+            x = (cols.mean() + 0.5) * pixel - width * pixel / 2
+            y = height * pixel / 2 - (rows.mean() + 0.5) * pixel
+            self.assertAlmostEqual(x, float(obs[i, 0]), delta=pixel)
+            self.assertAlmostEqual(y, float(obs[i, 1]), delta=pixel)
+            self.assertAlmostEqual(len(rows) * pixel ** 2, np.pi * 0.006 ** 2, delta=0.3 * np.pi * 0.006 ** 2)
+            self.assertFalse((marbles[i] & walls[i]).any())
+        single = agents.MazeEnv().images(pixel)
+        self.assertEqual(single.shape, (4, height, width))
+        with self.assertRaisesRegex(ValueError, "raster pixel"):
+            envs.images(0)
+
     def test_bad_arguments_are_refused_naming_them(self):
+        with self.assertRaisesRegex(ValueError, "observation: 'latency'"):
+            agents.VectorMazeEnv(1, observation={"latency": 2})
+        with self.assertRaisesRegex(ValueError, "position_noise"):
+            agents.VectorMazeEnv(1, observation={"position_noise": -1})
         with self.assertRaisesRegex(ValueError, "nope"):
             agents.VectorMazeEnv(1, maze="nope")
         with self.assertRaisesRegex(ValueError, "restitution"):

@@ -25,6 +25,7 @@ StateOutput::StateOutput(ros::NodeHandle& nh, const NodeSettings& settings)
   maze_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("maze_markers", 1, true);
   marble_marker_pub_ = nh.advertise<visualization_msgs::Marker>("marble_marker", 10);
   live_markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("live_markers", 1);
+  tf_pub_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);  // as tf2_ros's broadcaster does
 }
 
 void StateOutput::publishDescription(const mm::Simulation& sim) {
@@ -45,15 +46,24 @@ void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
 }
 
 void StateOutput::publishState(const mm::Simulation& sim, const ros::Time& stamp) {
-  state_pub_.publish(marbleStateMessage(sim, stamp, settings_.frames));
-  odom_pub_.publish(odometryMessage(sim, stamp, settings_.frames));
+  // Each message is built only when someone listens: a lockstep agent that reads marble_state
+  // alone pays for nothing else.
+  if (state_pub_.getNumSubscribers() > 0)
+    state_pub_.publish(marbleStateMessage(sim, stamp, settings_.frames));
+  if (odom_pub_.getNumSubscribers() > 0)
+    odom_pub_.publish(odometryMessage(sim, stamp, settings_.frames));
   if (stamp <= last_tf_stamp_) return;
   last_tf_stamp_ = stamp;
+  if (tf_pub_.getNumSubscribers() == 0) return;
   const auto transforms = boardAndMarbleTransforms(sim, stamp, settings_.frames);
-  tf_.sendTransform({transforms[0], transforms[1]});
+  tf2_msgs::TFMessage tf;
+  tf.transforms.assign(transforms.begin(), transforms.end());
+  tf_pub_.publish(tf);
 }
 
 void StateOutput::publishMarkers(const mm::Simulation& sim, const ros::Time& stamp) {
+  if (marble_marker_pub_.getNumSubscribers() == 0 && live_markers_pub_.getNumSubscribers() == 0)
+    return;  // (the trail starts again when someone looks)
   visualization_msgs::Marker marble =
       marbleMarker(sim.params().marble_radius, settings_.frames.marble);
   marble.header.stamp = stamp;

@@ -4,7 +4,7 @@
 #pragma once
 
 #include <ros/ros.h>
-#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <deque>
 #include <string>
@@ -53,8 +53,7 @@ class StateOutput {
  private:
   NodeSettings settings_;
   ros::Publisher state_pub_, odom_pub_, event_pub_, maze_pub_, maze_markers_pub_,
-      marble_marker_pub_, live_markers_pub_;
-  tf2_ros::TransformBroadcaster tf_;
+      marble_marker_pub_, live_markers_pub_, tf_pub_;
   TfWatch tf_watch_;  // says when another node broadcasts these frames
   ros::Time last_tf_stamp_, last_state_stamp_, last_marker_stamp_;
   bool state_pending_ = false;

@@ -39,7 +39,7 @@ void TimePolicy::keepingTime(const std::function<void()>& change) {
 }
 
 void TimePolicy::sayClock() {
-  if (!clock_pub_) return;
+  if (!clock_pub_ || clock_pub_.getNumSubscribers() == 0) return;  // (no one to tell)
   rosgraph_msgs::Clock msg;
   msg.clock = stampNow();
   clock_pub_.publish(msg);

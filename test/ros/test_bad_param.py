@@ -162,7 +162,7 @@ class BadParamTest(unittest.TestCase):
                     if t.header.frame_id in ("world", "tfa/board"):
                         seen.add((t.header.frame_id, t.child_frame_id))
             self.assertEqual(seen, {("world", "tfa/board"), ("tfa/board", "tfa/marble")})
-            rospy.sleep(1.0)  # each sees the other's transforms
+            rospy.sleep(3.0)  # each looks for other publishers of /tf every 2 s
         finally:
             own_output, other_output = self.stop(own), self.stop(other)
         self.assertIn("tf: /bp_tf_other broadcasts 'tfa/", own_output)

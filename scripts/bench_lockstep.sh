@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# ROS lockstep as a roscpp agent runs it (bench/lockstep_agent.cpp): a node with ~lockstep at
+# 55 Hz and the `fast` preset on a private master, PERIODS commands each answered by the state
+# after it. Prints the periods a second and the node's CPU a period, with only marble_state
+# listened to and with every output listened to, and the physics of a period in process
+# (marble_maze_bench's hand-written loop) measured in the same run. BASELINE_WS, a workspace
+# built from another commit, adds its node's figures to the same run.
+set -euo pipefail
+# shellcheck source=scripts/workspace.sh
+. "$(dirname "$0")/workspace.sh"
+export PATH=/usr/bin:$PATH
+use_workspace
+export ROS_MASTER_URI=http://localhost:11398
+periods=${PERIODS:-20000}
+
+# run WORKSPACE LABEL [agent args...]: one node, one agent, on a master of their own.
+run() {
+  local ws=$1 label=$2
+  shift 2
+  roscore -p 11398 >/dev/null 2>&1 &
+  local core=$!
+  sleep 3
+  "$ws/devel/lib/marble_maze/marble_maze_node" _lockstep:=0.01818181818181818 _preset:=fast \
+    >/dev/null 2>&1 &
+  local node=$!
+  printf '%-40s ' "$label"
+  "$WS/devel/lib/marble_maze/lockstep_agent" _periods:="$periods" _node_pid:="$node" "$@" ||
+    echo "failed"
+  kill -INT "$node"
+  wait "$node" || true
+  kill "$core"
+  wait "$core" || true
+}
+
+echo "ROS lockstep, 55 Hz, fast preset, $periods periods a case:"
+run "$WS" "this node, marble_state alone:"
+run "$WS" "this node, every output listened:" _listen_all:=true
+if [ -n "${BASELINE_WS:-}" ]; then
+  run "$BASELINE_WS" "baseline node, marble_state alone:"
+  run "$BASELINE_WS" "baseline node, every output listened:" _listen_all:=true
+fi
+csv=$(mktemp)
+trap 'rm -f "$csv"' EXIT
+"$WS/devel/lib/marble_maze/marble_maze_bench" --benchmark_filter='BM_AgentControlStep/envs:0/' \
+  --benchmark_out="$csv" --benchmark_out_format=csv >/dev/null 2>&1
+awk -F, '/envs:0/ { printf "the physics of a period in process (%s): %.1f us of CPU\n",
+  "BM_AgentControlStep/envs:0", $4 / 1000 }' "$csv"

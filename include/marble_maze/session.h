@@ -74,6 +74,9 @@ class Session {
   /// The events of the last run(), in order.
   const std::vector<Event>& events() const { return events_; }
   std::size_t queued() const { return queue_.size(); }
+  /// s of simulated time, at the step in force, until the last queued command acts (0 when none
+  /// waits).
+  double queuedAhead() const;
   /// Drops the queued commands, the rest of the state kept (a replay's: the recorded inputs hold
   /// each command again as it acted).
   void dropQueued() { queue_.clear(); }

@@ -37,6 +37,11 @@ bool Session::command(const TiltCommand& command) {
   return false;
 }
 
+double Session::queuedAhead() const {
+  if (queue_.empty() || queue_.back().step <= sim_.steps()) return 0;
+  return static_cast<double>(queue_.back().step - sim_.steps()) * sim_.params().step;
+}
+
 void Session::retimeQueued(const std::function<std::uint64_t(const TiltCommand&)>& step_of) {
   for (TiltCommand& c : queue_)
     if (c.step > sim_.steps()) c.step = std::max(sim_.steps(), step_of(c));

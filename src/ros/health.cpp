@@ -2,6 +2,12 @@
 
 namespace marble_maze_ros {
 
+namespace {
+/// s: a command queued further ahead than this is more likely a stamp of another clock (wall
+/// time sent to a node on simulated time) than a plan.
+constexpr double kFarAhead = 10.0;
+}  // namespace
+
 Health::Health(ros::NodeHandle& nh, std::function<HealthFigures()> figures)
     : updater_(nh, ros::NodeHandle("~")), figures_(std::move(figures)) {
   updater_.setHardwareID("marble_maze simulation");
@@ -42,9 +48,11 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   else if (now_.lost > before_.lost)
     status.summaryf(Level::WARN, "%llu tilt commands lost on the way (a burst too large?)",
                     static_cast<unsigned long long>(now_.lost - before_.lost));
-  else if (now_.queued > 1000)
-    status.summaryf(Level::WARN, "%zu tilt commands wait for their step (stamped far ahead?)",
-                    now_.queued);
+  else if (now_.queued > 1000 || now_.queued_ahead > kFarAhead)
+    status.summaryf(Level::WARN,
+                    "%zu tilt commands wait for their steps, the last %.3g s of simulated time "
+                    "ahead (stamped ahead of ROS time?)",
+                    now_.queued, now_.queued_ahead);
   else if (now_.ahead > 0)
     status.summaryf(Level::OK,
                     "%.3g s ahead of ROS time (steps taken while paused): waiting for it to "
@@ -63,9 +71,13 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("tilt commands per second", command_rate);
   // (Of ROS time: in lockstep it stands while no command comes, and on the node's own clock
   // while it is paused.)
-  status.add("seconds of ROS time since the last tilt command", now_.since_command);
+  if (now_.since_command < 0)
+    status.add("seconds of ROS time since the last tilt command", "none yet");
+  else
+    status.add("seconds of ROS time since the last tilt command", now_.since_command);
   status.add("tilt commands lost on the way (last period)", now_.lost - before_.lost);
   status.add("commands queued", now_.queued);
+  status.add("seconds until the last queued command acts", now_.queued_ahead);
   status.add("simulated time (s)", now_.simulated_time);
   status.add("ahead of ROS time (s)", now_.ahead);
   before_ = now_;

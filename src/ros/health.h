@@ -26,6 +26,7 @@ struct HealthFigures {
   std::uint64_t lost = 0;           ///< tilt commands lost on the way since the start
   double since_command = -1;        ///< s of ROS time since the last command; -1 none yet
   std::size_t queued = 0;           ///< commands waiting for their step
+  double queued_ahead = 0;          ///< s of simulated time until the last of them acts
   bool paused = false;
   bool lockstep = false;
   /// s the simulation stands ahead of ROS time (steps taken while paused), waiting for it; 0

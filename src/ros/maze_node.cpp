@@ -116,7 +116,7 @@ HealthFigures MazeNode::healthFigures() const {
   f.simulated_time = session_->simulation().time();
   f.ros_time = ros::Time::now().toSec();
   input_->fillHealth(&f);
-  f.queued = session_->queued();
+  f.queued = session_->queued(), f.queued_ahead = session_->queuedAhead();
   f.paused = session_->paused();
   time_->fillHealth(&f);
   return f;

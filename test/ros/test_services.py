@@ -353,6 +353,23 @@ class ServicesTest(unittest.TestCase):
             client.update_configuration({"step": 0.001})
             self.tilt.publish(BoardTilt())  # level again, at once
 
+    def test_9c_commands_stamped_far_ahead_are_a_warning(self):
+        # Twenty commands stamped a day ahead (a wall-time stamp sent to a node on simulated
+        # time, say) wait for their steps: /diagnostics warns and says how long.
+        try:
+            for k in range(20):
+                command = BoardTilt(roll=0.01)
+                command.header.stamp = rospy.get_rostime() + rospy.Duration(86400 + k)
+                self.tilt.publish(command)
+            status = self.diagnostics.wait(
+                lambda a: any("wait for their steps" in s.message for s in a.status), timeout=10)
+            self.assertIsNotNone(status, "/diagnostics does not warn of commands held a day")
+            values = {kv.key: kv.value for s in status.status for kv in s.values}
+            self.assertGreater(float(values["seconds until the last queued command acts"]), 86000)
+            self.assertEqual(values["commands queued"], "20")
+        finally:
+            call("reset", Trigger)  # (the queue goes with it)
+
 
 if __name__ == "__main__":
     rospy.init_node("test_services")

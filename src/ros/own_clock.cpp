@@ -42,11 +42,25 @@ void OwnClock::tick(const ros::WallTime& now) {
       aimFrom(now);
       due = most;
     }
-    if (due > 0) c_.run_steps(static_cast<std::uint64_t>(due), true);
+    if (due > 0) runSayingClock(static_cast<std::uint64_t>(due));
   } else {
-    while ((ros::WallTime::now() - now).toSec() < kFreeRunSlice) c_.run_steps(100, true);
+    while ((ros::WallTime::now() - now).toSec() < kFreeRunSlice) runSayingClock(100);
   }
   sayClock();
+}
+
+void OwnClock::runSayingClock(std::uint64_t count) {
+  // /clock is said at each state period's end: ROS time never jumps past a state, so that a
+  // node on /use_sim_time can act between any two of them.
+  const auto per_state = static_cast<std::uint64_t>(
+      std::max(1.0, std::round(1.0 / (c_.settings->publish_rate * step()))));
+  while (count > 0) {
+    const std::uint64_t to_state = per_state - c_.session->steps() % per_state;
+    const std::uint64_t n = std::min(count, to_state);
+    c_.run_steps(n, true);
+    count -= n;
+    if (n == to_state) sayClock();
+  }
 }
 
 void OwnClock::fillHealth(HealthFigures* f) const {

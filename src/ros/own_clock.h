@@ -25,6 +25,8 @@ class OwnClock : public TimePolicy {
   bool clockStands() const override { return c_.session->paused(); }
 
  private:
+  /// Takes `count` steps, saying /clock at the end of each state period among them.
+  void runSayingClock(std::uint64_t count);
   /// The real-time factor counts from here: wall time `now` and the simulated time now.
   void aimFrom(const ros::WallTime& now);
 

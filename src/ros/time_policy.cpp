@@ -68,7 +68,9 @@ double TimePolicy::queueStamped(const ros::Time& stamp, mm::TiltCommand::Kind ki
 }
 
 void TimePolicy::ownClock(ros::NodeHandle& nh) {
-  clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  // (Deep enough that a listener the machine holds up for a moment misses no period of a node
+  // that runs free.)
+  clock_pub_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 1000);
   refuseSharedClock();
   c_.reanchor(ros::Time(0));
   c_.publish_state(stateStamp(), true);

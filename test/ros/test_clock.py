@@ -60,6 +60,18 @@ class ClockTest(unittest.TestCase):
         rate = len(inside) / (c1 - c0)
         print("marble_state: %.2f per second of simulated time" % rate)
         self.assertAlmostEqual(rate, 50.0, delta=1.0)
+        # At 100 times real time a millisecond's timer tick is 0.1 s of simulated time: /clock
+        # still moves by at most one state period (20 ms) at a time.
+        Client("/marble_maze", timeout=20).update_configuration({"real_time_factor": 100.0})
+        said = []
+        sub = rospy.Subscriber("/clock", Clock, lambda m: said.append(m.clock.to_sec()),
+                               queue_size=100000)
+        time.sleep(2.0)
+        sub.unregister()
+        gaps = sorted(b - a for a, b in zip(said, said[1:]) if b > a)
+        print("/clock at factor 100: %d said, median gap %.4f s" % (len(said), gaps[len(gaps) // 2]))
+        self.assertGreater(len(gaps), 1000)
+        self.assertLessEqual(gaps[len(gaps) // 2], 0.02 + 1e-9)
 
     def test_paused_the_clock_stands_and_is_still_said(self):
         # Paused, ROS time (the node's) stands still, and /clock goes on being said: a node

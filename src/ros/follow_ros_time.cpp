@@ -53,14 +53,10 @@ void FollowRosTime::tick(const ros::Time& now) {
   }
   last_now_ = now;
   if (c_.session->paused()) {
-    // The frozen state goes on being published, so that tf does not go stale: once in each
-    // state period of ROS time, stamped at its start, as the running states are.
-    const std::int64_t period =
-        std::max<std::int64_t>(1, std::llround(1e9 / c_.settings->publish_rate));
-    const std::int64_t slot = static_cast<std::int64_t>(now.toNSec()) / period;
-    if (slot != frozen_slot_) {
-      frozen_slot_ = slot;
-      c_.publish_state(std::max(ros::Time().fromNSec(slot * period), stampNow()), true);
+    // The frozen state goes on being published, so that tf does not go stale.
+    if (last_frozen_.isZero() || (now - last_frozen_).toSec() >= 1.0 / c_.settings->publish_rate) {
+      last_frozen_ = now;
+      c_.publish_state(stateStamp(), true);
     }
     return;
   }
@@ -87,7 +83,7 @@ void FollowRosTime::reanchorAhead() {
 }
 
 void FollowRosTime::paused() {
-  frozen_slot_ = -1;
+  last_frozen_ = ros::Time();
   reanchorAhead();  // steps taken while paused (`step`) follow on from here in simulated time
 }
 

@@ -26,9 +26,9 @@ class FollowRosTime : public TimePolicy {
   void reanchorAhead();
 
   ros::Timer timer_;
-  ros::WallTimer clock_check_;     // says once if a simulated clock has not come 2 s after start
-  ros::Time last_now_;             // the latest ROS time seen (a clock going back is followed)
-  std::int64_t frozen_slot_ = -1;  // while paused: the state period of ROS time last published
+  ros::WallTimer clock_check_;  // says once if a simulated clock has not come 2 s after start
+  ros::Time last_now_;          // the latest ROS time seen (a clock going back is followed)
+  ros::Time last_frozen_;       // while paused: when the frozen state was last published
 };
 
 }  // namespace marble_maze_ros

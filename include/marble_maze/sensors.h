@@ -18,6 +18,9 @@ struct SensorOptions {
   double tilt_quantum = 0;    ///< rad: the measured roll and pitch rounded to multiples; 0 exact
 };
 
+/// SplitMix64's output for the state before `x` (x plus its increment, mixed): a number from a
+/// seed, an environment and an episode alone.
+std::uint64_t splitMix64(std::uint64_t x);
 /// SplitMix64's next number from `state`, uniform in [0, 1).
 double uniformDraw(std::uint64_t* state);
 

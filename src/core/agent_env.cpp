@@ -81,18 +81,6 @@ AgentEnv::AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
   reset();
 }
 
-namespace {
-
-/// SplitMix64: a number from the seed, the environment and the episode alone.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
-
-}  // namespace
-
 void AgentEnv::seed(std::uint64_t seed, std::uint64_t index) {
   seed_ = seed;
   index_ = index;
@@ -100,7 +88,7 @@ void AgentEnv::seed(std::uint64_t seed, std::uint64_t index) {
 }
 
 void AgentEnv::reset() {
-  random_ = mix(mix(mix(seed_) ^ index_) ^ episode_++);
+  random_ = splitMix64(splitMix64(splitMix64(seed_) ^ index_) ^ episode_++);
   const auto uniform = [this] { return uniformDraw(&random_); };
   if (!options_.ranges.empty()) {
     Params params = nominal_;

@@ -6,11 +6,17 @@
 
 namespace marble_maze {
 
-double uniformDraw(std::uint64_t* state) {
-  std::uint64_t x = (*state += 0x9e3779b97f4a7c15ull);
+std::uint64_t splitMix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return static_cast<double>((x ^ (x >> 31)) >> 11) * 0x1p-53;
+  return x ^ (x >> 31);
+}
+
+double uniformDraw(std::uint64_t* state) {
+  const std::uint64_t x = splitMix64(*state);
+  *state += 0x9e3779b97f4a7c15ull;
+  return static_cast<double>(x >> 11) * 0x1p-53;
 }
 
 namespace {

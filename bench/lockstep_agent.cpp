@@ -6,7 +6,6 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <topic_tools/shape_shifter.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -81,7 +80,7 @@ int main(int argc, char** argv) {
   }
   const double wall = (ros::WallTime::now() - begin).toSec();
   const double cpu = node_pid ? cpuSeconds(node_pid) - cpu_before : 0;
-  std::printf("%d periods in %.3f s: %.0f periods/s; the node's CPU %.1f us a period\n", done,
-              wall, done / wall, 1e6 * cpu / done);
+  std::printf("%d periods in %.3f s: %.0f periods/s; the node's CPU %.1f us a period\n", done, wall,
+              done / wall, 1e6 * cpu / done);
   return 0;
 }

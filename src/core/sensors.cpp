@@ -47,7 +47,8 @@ Sensors::Sensors(const SensorOptions& options, double control_rate) : options_(o
     refuse("tilt_quantum", options.tilt_quantum, "[0, 0.5] rad");
   if (options.camera_rate > 0 && options.camera_rate < control_rate)
     frames_per_period_ = options.camera_rate / control_rate;
-  history_.resize(static_cast<std::size_t>(options.delay_periods + options.delay_jitter + 1));
+  history_.resize(static_cast<std::size_t>(options.delay_periods) +
+                  static_cast<std::size_t>(options.delay_jitter) + 1);
 }
 
 Sensors::Frame Sensors::capture(const Frame& truth, std::uint64_t* random) const {

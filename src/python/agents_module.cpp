@@ -65,7 +65,7 @@ class VectorEnv {
     {
       py::gil_scoped_release release;
       for (int i = 0; i < env_.size(); ++i)
-        env_.env(i).draw(*raster_, data + i * mm::Raster::kChannels * h * w);
+        env_.env(i).draw(*raster_, data + py::ssize_t{i} * mm::Raster::kChannels * h * w);
     }
     return out;
   }

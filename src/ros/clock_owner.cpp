@@ -14,7 +14,8 @@ std::vector<std::string> otherPublishers(const std::string& topic, const std::st
   std::vector<std::string> others;
   if (!ros::master::execute("getSystemState", request, response, payload, false)) return others;
   XmlRpc::XmlRpcValue& publishers = payload[0];
-  for (int i = 0; i < publishers.size(); ++i) {
+  // XmlRpcValue's begin() walks a struct's members, not an array's items: index it.
+  for (int i = 0; i < publishers.size(); ++i) {  // NOLINT(modernize-loop-convert)
     if (static_cast<std::string>(publishers[i][0]) != topic) continue;
     for (int j = 0; j < publishers[i][1].size(); ++j) {
       const std::string node = publishers[i][1][j];

@@ -235,7 +235,8 @@ class AgentsTest(unittest.TestCase):
             y = height * pixel / 2 - (rows.mean() + 0.5) * pixel
             self.assertAlmostEqual(x, float(obs[i, 0]), delta=pixel)
             self.assertAlmostEqual(y, float(obs[i, 1]), delta=pixel)
-            self.assertAlmostEqual(len(rows) * pixel ** 2, np.pi * 0.006 ** 2, delta=0.3 * np.pi * 0.006 ** 2)
+            disc = np.pi * 0.006 ** 2
+            self.assertAlmostEqual(len(rows) * pixel ** 2, disc, delta=0.3 * disc)
             self.assertFalse((marbles[i] & walls[i]).any())
         single = agents.MazeEnv().images(pixel)
         self.assertEqual(single.shape, (4, height, width))

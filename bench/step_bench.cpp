@@ -168,6 +168,20 @@ void BM_StepByPhysics(benchmark::State& state) {
 }
 BENCHMARK(BM_StepByPhysics)->Apply(fixedSteps)->ArgName("physics")->DenseRange(0, 2);
 
+/// A marble rolling under the circling tilt in the 10 x 10 maze, then one at rest on the level
+/// board there: asleep (Simulation::step), it costs next to nothing until something moves it.
+void BM_RestingMarble(benchmark::State& state) {
+  mm::Simulation sim(sceneOfSize(10));
+  state.SetLabel(state.range(0) ? "at rest, level board" : "rolling");
+  if (!state.range(0)) {
+    runSteps(state, &sim);
+    return;
+  }
+  for (auto _ : state) sim.step();
+  state.counters["asleep"] = sim.resting();
+}
+BENCHMARK(BM_RestingMarble)->Apply(fixedSteps)->ArgName("resting")->Arg(0)->Arg(1);
+
 /// Each integrator in the 10 x 10 maze, rolling, without and with air drag: RK4 asks the contacts
 /// four times a step only when a force changes over the step (drag); otherwise it costs what
 /// velocity Verlet does.

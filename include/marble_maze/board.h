@@ -21,10 +21,12 @@ class Board {
   /// within it, and the board moves there as it moves to any target.
   void setLimits(const Params& params);
   /// Drive towards target angles (clamped to the tilt limit) like a servo: a first-order lag with
-  /// the response time, at up to the tilt-rate limit.
-  void setTargetTilt(double roll, double pitch);
+  /// the response time, at up to the tilt-rate limit. Returns whether the drive changed (false:
+  /// the targets in force, to the last bit).
+  bool setTargetTilt(double roll, double pitch);
   /// Drive at the given rates (clamped to the tilt-rate limit) until the tilt limit stops them.
-  void setTiltRate(double roll_rate, double pitch_rate);
+  /// Returns whether the drive changed (false: the rates in force, to the last bit).
+  bool setTiltRate(double roll_rate, double pitch_rate);
   /// Moves the board over a step of h seconds, turning each angle by at most `most_turn` (rad),
   /// and updates its angular velocity.
   void advance(double h, double most_turn = 1e9);

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstring>
 
 namespace marble_maze {
 
@@ -14,6 +15,17 @@ using Index3 = Eigen::Vector3i;
 constexpr double kPi = 3.14159265358979323846;
 /// The most a board tilts either way (rad): the bound of tilt_limit and of every tilt.
 constexpr double kQuarterTurn = kPi / 2;
+
+/// Whether two values are the same to the last bit: 0 and -0 differ, a NaN is itself.
+inline bool sameBits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+inline bool sameBits(const Vec3& a, const Vec3& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+}
+inline bool sameBits(const Quat& a, const Quat& b) {
+  return std::memcmp(a.coeffs().data(), b.coeffs().data(), sizeof(double) * 4) == 0;
+}
 
 /// a x b, the same to the bit as Eigen's cross(), with its x and y worked out as one pair: the
 /// step stores cross products and soon reads them back, x and y together, which waits long when

@@ -94,15 +94,23 @@ class Simulation {
 
   /// The marble back to its start, at rest; the board back to its initial tilt, at rest.
   void reset();
-  void setTargetTilt(double roll, double pitch) { board_.setTargetTilt(roll, pitch); }
+  void setTargetTilt(double roll, double pitch) {
+    if (board_.setTargetTilt(roll, pitch)) resting_ = false;
+  }
   void setTiltRate(double roll_rate, double pitch_rate) {
-    board_.setTiltRate(roll_rate, pitch_rate);
+    if (board_.setTiltRate(roll_rate, pitch_rate)) resting_ = false;
   }
   /// Puts the marble, free, at a board-frame position with a world-frame velocity and spin.
   void placeMarble(const Vec3& position_in_board, const Vec3& velocity,
                    const Vec3& angular_velocity = Vec3::Zero());
-  /// Advances one fixed step of params().step seconds (params().substeps substeps).
+  /// Advances one fixed step of params().step seconds (params().substeps substeps). A step that
+  /// left the marble and the board as they were, to the last bit and with no event, is a fixed
+  /// point: until something changes them (a new tilt or rate, a place, reset, restore or new
+  /// physics) the steps after it only count the time, as Box2D's bodies sleep, and give what
+  /// stepping would to the last bit.
   void step();
+  /// Whether the marble and the board rest: the last step changed nothing (see step()).
+  bool resting() const { return resting_; }
 
   const Maze& maze() const { return maze_; }
   const Params& params() const { return params_; }
@@ -204,6 +212,7 @@ class Simulation {
   std::uint64_t steps_origin_ = 0;
   double board_work_ = 0;
   std::uint64_t steps_ = 0;
+  bool resting_ = false;  // the last step changed nothing, and nothing has since
   StepCounts counts_;
   std::vector<Event> events_;
   std::vector<Contact> contacts_;         // reused: no allocation per step

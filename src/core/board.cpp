@@ -111,16 +111,26 @@ double Board::clampRate(double rate) const {
   return tilt_rate_limit_ > 0 ? std::clamp(rate, -tilt_rate_limit_, tilt_rate_limit_) : rate;
 }
 
-void Board::setTargetTilt(double roll, double pitch) {
+bool Board::setTargetTilt(double roll, double pitch) {
+  roll = clampTilt(roll);
+  pitch = clampTilt(pitch);
+  const bool same =
+      drive_ == Drive::Target && sameBits(roll, target_roll_) && sameBits(pitch, target_pitch_);
   drive_ = Drive::Target;
-  target_roll_ = clampTilt(roll);
-  target_pitch_ = clampTilt(pitch);
+  target_roll_ = roll;
+  target_pitch_ = pitch;
+  return !same;
 }
 
-void Board::setTiltRate(double roll_rate, double pitch_rate) {
+bool Board::setTiltRate(double roll_rate, double pitch_rate) {
+  roll_rate = clampRate(roll_rate);
+  pitch_rate = clampRate(pitch_rate);
+  const bool same =
+      drive_ == Drive::Rate && sameBits(roll_rate, roll_rate_) && sameBits(pitch_rate, pitch_rate_);
   drive_ = Drive::Rate;
-  roll_rate_ = clampRate(roll_rate);
-  pitch_rate_ = clampRate(pitch_rate);
+  roll_rate_ = roll_rate;
+  pitch_rate_ = pitch_rate;
+  return !same;
 }
 
 void Board::advance(double h, double most_turn) {

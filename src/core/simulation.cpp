@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -111,6 +112,7 @@ void Simulation::setParams(const Params& params) {
   substep_ = params_.step / params_.substeps;
   time_origin_ = time_;  // steps of another length count from here
   steps_origin_ = steps_;
+  resting_ = false;
 }
 
 SimulationState Simulation::state() const {
@@ -128,6 +130,7 @@ void Simulation::restore(const SimulationState& state) {
   steps_ = steps_origin_ = state.steps;
   frame_ = gridFrame();
   board_work_ = 0;
+  resting_ = false;
   events_.clear();
 }
 
@@ -231,6 +234,7 @@ void Simulation::restore(ByteReader* in, bool with_origin) {
   steps_origin_ = steps_origin;
   frame_ = gridFrame();
   board_work_ = 0;
+  resting_ = false;
   events_.clear();
 }
 
@@ -294,6 +298,7 @@ void Simulation::placeMarble(const Vec3& position_in_board, const Vec3& velocity
   marble_.velocity = velocity;
   marble_.angular_velocity = angular_velocity;
   board_work_ = 0;
+  resting_ = false;
 }
 
 double Simulation::energy() const {
@@ -340,12 +345,39 @@ int Simulation::substepsFor() const {
   return substeps;
 }
 
+namespace {
+
+/// Whether two marbles are the same to the last bit.
+bool sameBits(const Marble& a, const Marble& b) {
+  return a.phase == b.phase && a.contacts == b.contacts &&
+         marble_maze::sameBits(a.position, b.position) &&
+         marble_maze::sameBits(a.velocity, b.velocity) &&
+         marble_maze::sameBits(a.angular_velocity, b.angular_velocity) &&
+         marble_maze::sameBits(a.orientation, b.orientation);
+}
+
+}  // namespace
+
 void Simulation::step() {
   events_.clear();
-  const int substeps = substepsFor();
-  const double h = params_.step / substeps;
-  substep_ = h;
-  for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
+  if (!resting_) {
+    // A step is a function of the state (not of the time, which only stamps the events) and of
+    // the inputs: one that changes nothing would change nothing again. Only a board that did not
+    // turn in the last step can be left as it was, so only then is the marble compared (in play
+    // the board turns, and the step pays nothing for it).
+    std::optional<Marble> before;
+    const double roll = board_.roll(), pitch = board_.pitch();
+    const Vec3 spin = board_.angularVelocity();
+    if (spin == Vec3::Zero()) before = marble_;
+    const int substeps = substepsFor();
+    const double h = params_.step / substeps;
+    substep_ = h;
+    for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
+    resting_ = before && events_.empty() && sameBits(*before, marble_) &&
+               marble_maze::sameBits(roll, board_.roll()) &&
+               marble_maze::sameBits(pitch, board_.pitch()) &&
+               marble_maze::sameBits(spin, board_.angularVelocity());
+  }
   ++steps_;
   time_ = time_origin_ + static_cast<double>(steps_ - steps_origin_) * params_.step;
 }

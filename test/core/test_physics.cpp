@@ -116,6 +116,44 @@ TEST(Rest, AMarbleAtRestStaysAtRestFor100Seconds) {
   }
 }
 
+TEST(Rest, AMarbleAtRestSleepsAndWakesToTheBitsItWouldHaveHadAwake) {
+  // Two runs of the same inputs: `a` sleeps; `b` is restored from its own state before every
+  // step, which wakes it, so that it steps in full throughout.
+  for (Model m : {Model::Smooth, Model::Rolling}) {
+    const Scene scene = test::flatFloor(10, 10, 0.01, placed(model(m), {0.001, -0.002, kRadius}));
+    Simulation a(scene), b(scene);
+    int first_rest = -1, rests = 0;
+    for (int i = 0; i < 6000; ++i) {
+      // At rest for 1 s, a tilt from 1 s to 1.5 s, level again after.
+      const double roll = i >= 1000 && i < 1500 ? 0.05 : 0.0;
+      a.setTargetTilt(roll, 0);
+      b.setTargetTilt(roll, 0);
+      b.restore(b.state());
+      const std::uint64_t substeps = a.counts().substeps;
+      const bool asleep = a.resting();
+      a.step();
+      b.step();
+      if (asleep) {
+        EXPECT_EQ(a.counts().substeps, substeps) << i;  // asleep, a step costs nothing
+      }
+      if (a.resting()) {
+        if (first_rest < 0) first_rest = i;
+        ++rests;
+      }
+      ASSERT_TRUE(sameBits(a.marble().position, b.marble().position))
+          << test::name(a.params()) << i;
+      ASSERT_TRUE(sameBits(a.marble().velocity, b.marble().velocity)) << i;
+      ASSERT_TRUE(sameBits(a.marble().angular_velocity, b.marble().angular_velocity)) << i;
+      ASSERT_TRUE(sameBits(a.marble().orientation, b.marble().orientation)) << i;
+      ASSERT_TRUE(sameBits(a.board().roll(), b.board().roll())) << i;
+    }
+    // It falls asleep within 10 steps of being put down, and wakes for the tilt.
+    EXPECT_GE(first_rest, 0);
+    EXPECT_LT(first_rest, 10);
+    EXPECT_LT(rests, 6000 - 500);
+  }
+}
+
 // --- Seams -----------------------------------------------------------------------------------
 
 TEST(Seams, RollingOverAHundredFloorTilesStaysOnTheSurface) {

@@ -53,8 +53,12 @@ TEST(Sensors, JitterAddsUpToItsPeriodsDrawnEachPeriodAndNeverGoesBack) {
   std::set<int> lags;
   for (int k = 1; k <= 600; ++k) {
     const int lag = k - static_cast<int>(seen[k - 1]);
-    if (k > 3) EXPECT_TRUE(lag >= 1 && lag <= 3) << "period " << k << " lag " << lag;
-    if (k > 1) EXPECT_GE(seen[k - 1], seen[k - 2]);  // never an older frame after a newer one
+    if (k > 3) {
+      EXPECT_TRUE(lag >= 1 && lag <= 3) << "period " << k << " lag " << lag;
+    }
+    if (k > 1) {
+      EXPECT_GE(seen[k - 1], seen[k - 2]);  // never an older frame after a newer one
+    }
     lags.insert(lag);
   }
   EXPECT_TRUE(lags.count(1) && lags.count(2) && lags.count(3));  // every delay is drawn

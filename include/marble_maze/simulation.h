@@ -202,6 +202,7 @@ class Simulation {
   FieldForces forces_;
   const Integrator* integrator_;  // stateless, shared
   double mass_, inertia_;         // of the marble: params_'s, worked out once
+  double most_turn_;              // rad: the most the board turns in a substep (mostTurnFor)
   Marble marble_;
   GridFrame frame_;
   Vec3 held_in_grid_ = Vec3::Zero();  // where a finished marble rests, in the grid frame

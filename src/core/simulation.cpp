@@ -31,6 +31,10 @@ constexpr double kNearSlack = 0.5;
 constexpr double kMostPlacedHeight = 100;
 // The most a board turns in one substep (rad): beyond it a step is cut into more substeps.
 constexpr double kMostTurn = 0.05;
+// The substep's path relative to a turning board is swept as a chord of its arc: a turn of a
+// about the pivot, at a reach L from it, leaves the arc L a^2 / 8 off the chord. The turn is
+// kept small enough that this stays within this share of the marble's radius.
+constexpr double kMostChordGap = 0.0025;
 // The most air drag may slow the marble in one substep, k |v| h: within it every scheme slows it
 // without overshooting (explicit Euler's limit is 1); beyond it a step is cut into more substeps.
 constexpr double kMostDragDecay = 0.5;
@@ -56,6 +60,19 @@ std::string whyTooManySteps(double time, double step) {
 
 }  // namespace
 
+namespace {
+
+/// The most the board may turn in one substep (rad): kMostTurn, or less where the board reaches
+/// so far from its pivot, against the marble's size, that the arc of a turn would stray from its
+/// chord by more than kMostChordGap of the radius (a 0.5 mm marble in metre cells).
+double mostTurnFor(const Maze& maze, const Params& params) {
+  const Vec3 reach = maze.pivot().cwiseMax(maze.extent() - maze.pivot());
+  const double most = std::sqrt(8 * kMostChordGap * params.marble_radius / reach.norm());
+  return std::min(kMostTurn, most);
+}
+
+}  // namespace
+
 Simulation::Simulation(const Scene& scene)
     : maze_(scene.maze),
       params_(scene.params),
@@ -64,7 +81,8 @@ Simulation::Simulation(const Scene& scene)
       forces_(params_),
       integrator_(&integratorFor(params_.integrator)),
       mass_(params_.marbleMass()),
-      inertia_(params_.marbleInertia()) {
+      inertia_(params_.marbleInertia()),
+      most_turn_(mostTurnFor(maze_, params_)) {
   validate(params_);
   substep_ = params_.step / params_.substeps;
   reset();
@@ -108,6 +126,7 @@ void Simulation::setParams(const Params& params) {
   integrator_ = &integratorFor(params_.integrator);
   mass_ = params_.marbleMass();
   inertia_ = params_.marbleInertia();
+  most_turn_ = mostTurnFor(maze_, params_);
   frame_ = gridFrame();
   substep_ = params_.step / params_.substeps;
   time_origin_ = time_;  // steps of another length count from here
@@ -314,18 +333,18 @@ double Simulation::energy() const {
 
 int Simulation::substepsFor() const {
   // A board that turns far in one step (a tilt snapping across its range) is taken in as many
-  // more substeps as keep each turn within kMostTurn, turning that much in each: the sweep
+  // more substeps as keep each turn within most_turn_, turning that much in each: the sweep
   // follows a substep's motion relative to the board as a chord, near its arc only for small
   // turns.
   int substeps = params_.substeps;
   // (A rate limit that keeps the turn small spares the probe.)
-  if (!(params_.tilt_rate_limit > 0 && params_.tilt_rate_limit * params_.step <= kMostTurn)) {
+  if (!(params_.tilt_rate_limit > 0 && params_.tilt_rate_limit * params_.step <= most_turn_)) {
     Board probe = board_;
     probe.advance(params_.step);
     const double turn =
         std::max(std::abs(probe.roll() - board_.roll()), std::abs(probe.pitch() - board_.pitch()));
-    if (turn > kMostTurn * substeps)
-      substeps = static_cast<int>(std::min(10000.0, std::ceil(turn / kMostTurn)));
+    if (turn > most_turn_ * substeps)
+      substeps = static_cast<int>(std::min(10000.0, std::ceil(turn / most_turn_)));
   }
   // Air drag slows the marble at the rate k |v|: over a substep much longer than 1 / (k |v|) (a
   // light marble at speed, a long step) a scheme overshoots, turns the velocity round and makes it
@@ -403,7 +422,7 @@ Simulation::BoardMotion Simulation::moveBoard(double h) {
   // The board's pose at the start of the substep, moving as it moves over the substep (its
   // motion in the last one kept apart).
   BoardMotion motion{frame_, frame_.angular_velocity, board_.roll(), board_.pitch()};
-  board_.advance(h, kMostTurn);
+  board_.advance(h, most_turn_);
   frame_.rotation = board_.rotation();  // the pivot stays where it is in the grid
   frame_.angular_velocity = board_.angularVelocity();
   motion.start.angular_velocity = frame_.angular_velocity;

@@ -403,15 +403,20 @@ void Simulation::step() {
 
 void Simulation::substep(double h, double start_time) {
   ++counts_.substeps;
-  const BoardMotion motion = moveBoard(h);
+  BoardMotion motion = moveBoard(h);
   if (marble_.phase != MarblePhase::Free) {
     rideWithBoard();
     return;
   }
   gatherContacts(motion.start, h);
   // A contact struck at the start (a board kicking the marble) is an impulse before the
-  // substep's forces act, so that the flight after it keeps the whole substep's gravity.
-  if (solver_.anyImpact(contacts_, marble_.velocity)) impact(start_time);
+  // substep's forces act, so that the flight after it keeps the whole substep's gravity. The
+  // kick answered the board's change of speed: the marble leaving after it leaves on its own, and
+  // is not held as if it lagged the board's new motion.
+  if (solver_.anyImpact(contacts_, marble_.velocity)) {
+    impact(start_time);
+    motion.previous_spin = motion.start.angular_velocity;
+  }
   turnContactsToForcePose(motion);
   integrateToImpacts(h, start_time, motion);
   turnMarble(h);

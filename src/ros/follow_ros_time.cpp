@@ -16,7 +16,9 @@ constexpr double kMaxCatchUp = 1.0;  // s
 }  // namespace
 
 void FollowRosTime::start(ros::NodeHandle& nh) {
-  timer_ = nh.createTimer(ros::Duration(1.0 / c_.settings->update_rate),
+  // At least as often as states are due, or they would leave in bursts, several a tick.
+  const double rate = std::max(c_.settings->update_rate, c_.settings->publish_rate);
+  timer_ = nh.createTimer(ros::Duration(1.0 / rate),
                           [this](const ros::TimerEvent&) { tick(ros::Time::now()); });
   // (On the wall's clock: a timer of ROS time does not fire while a simulated clock has not
   // started.)
@@ -54,8 +56,12 @@ void FollowRosTime::tick(const ros::Time& now) {
   last_now_ = now;
   if (c_.session->paused()) {
     // The frozen state goes on being published, so that tf does not go stale.
-    if (last_frozen_.isZero() || (now - last_frozen_).toSec() >= 1.0 / c_.settings->publish_rate) {
-      last_frozen_ = now;
+    // Each is due a publish period after the last was due, not after it went out: the timer's
+    // ticks then cost no period its lateness, and the states keep the publish rate.
+    const ros::Duration period(1.0 / c_.settings->publish_rate);
+    if (next_frozen_.isZero() || now >= next_frozen_) {
+      next_frozen_ = next_frozen_.isZero() || now - next_frozen_ >= period ? now + period
+                                                                           : next_frozen_ + period;
       c_.publish_state(stateStamp(), true);
     }
     return;
@@ -83,7 +89,7 @@ void FollowRosTime::reanchorAhead() {
 }
 
 void FollowRosTime::paused() {
-  last_frozen_ = ros::Time();
+  next_frozen_ = ros::Time();
   reanchorAhead();  // steps taken while paused (`step`) follow on from here in simulated time
 }
 

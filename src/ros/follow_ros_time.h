@@ -28,7 +28,7 @@ class FollowRosTime : public TimePolicy {
   ros::Timer timer_;
   ros::WallTimer clock_check_;  // says once if a simulated clock has not come 2 s after start
   ros::Time last_now_;          // the latest ROS time seen (a clock going back is followed)
-  ros::Time last_frozen_;       // while paused: when the frozen state was last published
+  ros::Time next_frozen_;       // while paused: when the frozen state is next due
 };
 
 }  // namespace marble_maze_ros

@@ -264,6 +264,53 @@ TEST(Impact, ATiltingBoardKicksARestingMarbleAsEquationOneSays) {
   EXPECT_NEAR(sim.marble().velocity.dot(n), expected, 0.01 * expected);  // 1%
 }
 
+TEST(Impact, AKickShorterThanAStepLandsInsideTheStepAndEveryBounceAfterItComes) {
+  // A marble at rest 0.07 m from the pivot on a level floor (e = 0.55); at 30 ms the board
+  // starts to roll at its rate limit, 1.3 rad/s (no servo lag), and kicks it up at
+  // 1.3 x 0.07 = 0.091 m/s: it leaves the floor at e x 0.091 = 0.050 m/s relative to it and lands
+  // on the turning floor 10.19 ms later, then bounces at 0.050 and 0.0275 m/s. The landing is
+  // where the parabola p(s) = (0, 0.07, r + 0.091 (1 + e) s - g s^2 / 2) meets the plane turned
+  // by 1.3 s: -0.07 sin(1.3 s) + z(s) cos(1.3 s) = r (bisection, below). At steps of 10 and 20 ms
+  // the flight is shorter than a step, and each bounce comes.
+  const double w = 1.3, e = 0.55, y = 0.07;
+  const auto kick = [&](double step) {
+    Params p = placed(model(Model::Rolling, e), {0, y, kRadius});
+    p.step = step;
+    p.tilt_rate_limit = w;
+    p.tilt_response_time = 0;
+    p.tilt_limit = 0.6;
+    Simulation sim(test::flatFloor(30, 30, 0.01, p));
+    std::vector<Event> impacts;
+    while (sim.time() < 0.2) {
+      if (sim.time() >= 0.03 - 1e-12) sim.setTargetTilt(0.5, 0);
+      sim.step();
+      for (const Event& event : sim.events()) impacts.push_back(event);
+    }
+    return impacts;
+  };
+  const double g = Params().gravity, up = w * y * (1 + e);
+  const auto above = [&](double s) {
+    const double z = kRadius + up * s - 0.5 * g * s * s;
+    return -y * std::sin(w * s) + z * std::cos(w * s) - kRadius;
+  };
+  double lo = 0.005, hi = 0.02;  // above(lo) > 0 > above(hi)
+  for (int i = 0; i < 100; ++i) (above(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  const double flight = lo;  // 10.19 ms
+  const std::vector<Event> fine = kick(1e-4);
+  ASSERT_EQ(fine.size(), 3u);
+  EXPECT_NEAR(fine[1].time - fine[0].time, flight, 1e-9);
+  for (double step : {0.01, 0.02}) {
+    const std::vector<Event> coarse = kick(step);
+    ASSERT_EQ(coarse.size(), 3u) << "step " << step;
+    // The landing to 1e-6 s, the board's turn within a step taken as a chord of its arc; the
+    // bounce after it, on the 0.1 ms run's, to 2e-5 s.
+    EXPECT_NEAR(coarse[1].time - coarse[0].time, flight, 1e-6) << "step " << step;
+    EXPECT_NEAR(coarse[2].time - coarse[0].time, fine[2].time - fine[0].time, 2e-5);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(coarse[k].speed, fine[k].speed, 0.01 * fine[k].speed) << "step " << step;
+  }
+}
+
 TEST(Impact, AHundredMetresPerSecondNeverTunnelsThroughAFiveMillimetreWall) {
   const AxisSlots x(0.005, 0.0221, 11), y(0.005, 0.0221, 3), z(0.005, 0.012, 2);
   Maze maze = test::floorMaze(x, y, z);

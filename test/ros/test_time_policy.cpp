@@ -108,6 +108,23 @@ TEST(FollowRosTime, PausedNoStepIsTakenAndTheFrozenStateTakesTheTimeThatPasses) 
   EXPECT_EQ(node.published.back(), ros::Time(101.0));
 }
 
+TEST(FollowRosTime, PausedTheFrozenStateComesAtThePublishRateUnderATimerThatTicksLate) {
+  FakeNode node;
+  node.settings.publish_rate = 50;
+  FollowRosTime policy(node.context());
+  policy.tick(ros::Time(100.0));
+  node.session.pause();
+  policy.paused();
+  const std::size_t before = node.published.size();
+  // Ticks every 3 ms, each 0 to 2 ms late: 10 s of them.
+  for (int k = 1; k <= 3334; ++k) {
+    ros::Time::setNow(ros::Time(100.0 + 0.003 * k + 0.001 * (k % 3)));
+    policy.tick(ros::Time::now());
+  }
+  // 50 a second, 500 in 10 s (to one: where the first falls), not one a period plus a tick.
+  EXPECT_NEAR(static_cast<double>(node.published.size() - before), 500, 1);
+}
+
 TEST(FollowRosTime, ACommandActsAtTheStepItsStampFallsOn) {
   FakeNode node;
   FollowRosTime policy(node.context());

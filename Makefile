@@ -22,7 +22,7 @@ check: build
 	@bash scripts/check.sh
 
 demo: build
-	@bash scripts/demo.sh
+	@bash scripts/demo.sh $(ARGS)
 
 # The step's cost (Google Benchmark), each case also as a ratio to free flight in the same run.
 bench: build

@@ -141,19 +141,32 @@ Entry choice(const char* key, const char* help, T Params::*member,
           {}};
 }
 
-/// The presets: integrator, step, substeps and model for each use (measured by make tradeoff).
+/// The presets: integrator, step, substeps and model for each use (measured by make tradeoff);
+/// `realistic` also takes the real game's measured physics (measuredPhysics()).
 struct Preset {
   const char* name;
   IntegratorKind integrator;
   double step;
   int substeps;
   Model model;
+  bool measured_physics;
 };
 const Preset kPresets[] = {
-    {"realtime", IntegratorKind::VelocityVerlet, 0.001, 1, Model::Rolling},
-    {"fast", IntegratorKind::VelocityVerlet, 0.005, 1, Model::Rolling},
-    {"accurate", IntegratorKind::RungeKutta4, 0.0001, 1, Model::Rolling},
+    {"realtime", IntegratorKind::VelocityVerlet, 0.001, 1, Model::Rolling, false},
+    {"fast", IntegratorKind::VelocityVerlet, 0.005, 1, Model::Rolling, false},
+    {"accurate", IntegratorKind::RungeKutta4, 0.0001, 1, Model::Rolling, false},
+    {"realistic", IntegratorKind::VelocityVerlet, 0.001, 1, Model::Rolling, true},
 };
+
+/// The wooden labyrinth game as measured; each value and its source in doc/realistic.md.
+void measuredPhysics(Params& p) {
+  p.marble_radius = 0.00635;  // a 12.7 mm ball
+  // 9 g in a 12.7 mm ball: 0.009 kg / (4/3 pi 0.00635^3 m^3)
+  p.marble_density = 0.009 / (4.0 / 3.0 * 3.14159265358979323846 * std::pow(0.00635, 3));
+  p.rolling_resistance = 0.00118;
+  p.restitution = 0.11;                // the walls' bounce factor
+  p.tilt_limit = 0.17453292519943295;  // 10 degrees
+}
 
 void applyPreset(Params& p, const std::string& name) {
   if (name == "none") {
@@ -166,6 +179,7 @@ void applyPreset(Params& p, const std::string& name) {
     p.step = preset.step;
     p.substeps = preset.substeps;
     p.model = preset.model;
+    if (preset.measured_physics) measuredPhysics(p);
     p.preset = name;
     return;
   }
@@ -181,11 +195,12 @@ const std::vector<Entry>& entries() {
         "",
         "sets integrator, step, substeps and model for a use: realtime (a ROS graph "
         "controlling at ~55 Hz), fast (training agents), accurate (closest to the physics), "
-        "none; keys set after it override it",
+        "realistic (realtime with the real game's measured marble, rolling resistance, wall "
+        "bounce and tilt limit), none; keys set after it override it",
         ParamInfo::Type::Choice,
         0,
         0,
-        {"realtime", "fast", "accurate", "none"},
+        {"realtime", "fast", "accurate", "realistic", "none"},
         false},
        [](Params& p, const std::string& text) { applyPreset(p, text); },
        [](const Params& p) { return p.preset; },

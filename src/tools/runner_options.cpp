@@ -47,7 +47,7 @@ void printHelp(std::ostream& out) {
       R"(Usage: simulate [OPTION]...
 Runs the marble_maze physics without ROS and reports what happened.
 
-  --maze NAME|FILE     a built-in maze (classic, prototype) or a maze file; default classic
+  --maze NAME|FILE     a built-in maze (classic, brio, prototype) or a maze file; default classic
   --tilt ROLL,PITCH    constant board tilt in radians (REP 103: roll about x, pitch about y);
                        default 0,0
   --tilt-csv FILE      tilt program: CSV rows t,roll,pitch (s, rad, rad), linear in between;

@@ -89,6 +89,15 @@ TEST(Autopilot, SolvesThePrototypeFromTheStart) {
   EXPECT_LT(d.time, 30);
 }
 
+TEST(Autopilot, SolvesTheBrioBoardWithTheRealGamesMeasuredPhysics) {
+  const Scene brio = loadScene("brio");
+  ASSERT_EQ(brio.params.preset, "realistic");
+  ASSERT_EQ(brio.params.rolling_resistance, 0.00118);
+  const Drive d = drive(brio, 60);
+  EXPECT_EQ(d.phase, MarblePhase::AtGoal) << "after " << d.time << " s";
+  EXPECT_LT(d.time, 40);
+}
+
 /// The classic maze started from ten of its open cells (odd, odd) other than the start and the
 /// goal, drawn with a fixed seed: the same every run (autopilot_cells.test starts the node on the
 /// same ten).

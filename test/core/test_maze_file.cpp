@@ -502,7 +502,7 @@ TEST(MazeFileError, MissingFile) {
     FAIL() << "expected a MazeFileError";
   } catch (const MazeFileError& e) {
     EXPECT_EQ(std::string(e.what()),
-              path + ": neither a built-in maze (classic, prototype) nor a file that exists");
+              path + ": neither a built-in maze (classic, brio, prototype) nor a file that exists");
     EXPECT_EQ(e.line, 0);
     EXPECT_EQ(e.source, path);
   }

@@ -65,7 +65,8 @@ TEST(Params, BadValuesNameTheKeyAndWhatWasExpected) {
             "integrator: expected one of 'semi_implicit_euler', 'velocity_verlet' or 'rk4', got "
             "'euler'");
   EXPECT_EQ(errorOf("preset", "quick"),
-            "preset: expected one of 'realtime', 'fast', 'accurate' or 'none', got 'quick'");
+            "preset: expected one of 'realtime', 'fast', 'accurate', 'realistic' or 'none', got "
+            "'quick'");
   EXPECT_EQ(errorOf("substeps", "2.5"), "substeps: expected a whole number, got '2.5'");
   EXPECT_NE(errorOf("start_position", "1,2").find("start_position: expected three"),
             std::string::npos);
@@ -175,6 +176,23 @@ TEST(Params, APresetSetsTheTradeAndLaterKeysOverrideIt) {
   setParam(p, "integrator", "semi_implicit_euler");  // after the preset: it wins
   EXPECT_EQ(getParam(p, "integrator"), "semi_implicit_euler");
   EXPECT_EQ(getParam(p, "step"), "0.0001");
+}
+
+TEST(Params, TheRealisticPresetIsRealtimeWithTheRealGamesMeasuredPhysics) {
+  Params realtime, p;
+  setParam(realtime, "preset", "realtime");
+  setParam(p, "preset", "realistic");
+  EXPECT_EQ(p.integrator, realtime.integrator);
+  EXPECT_EQ(p.step, realtime.step);
+  EXPECT_EQ(p.model, realtime.model);
+  // doc/realistic.md: a 12.7 mm, 9 g ball; rolling resistance 0.00118; wall bounce 0.11; 10 deg.
+  EXPECT_EQ(p.marble_radius, 0.00635);
+  EXPECT_NEAR(p.marbleMass(), 0.009, 1e-12);
+  EXPECT_EQ(p.rolling_resistance, 0.00118);
+  EXPECT_EQ(p.restitution, 0.11);
+  EXPECT_NEAR(p.tilt_limit * 180 / 3.14159265358979323846, 10, 1e-12);
+  setParam(p, "restitution", "0.3");  // after the preset: it wins
+  EXPECT_EQ(p.restitution, 0.3);
 }
 
 TEST(Params, TheDefaultMarbleWeighsWhatA12MillimetreSteelBallWeighs) {

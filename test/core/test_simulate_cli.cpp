@@ -232,7 +232,7 @@ TEST(SimulateCli, WrongFlagsAndValuesExitWithTwoAndSayWhy) {
       {"--maze /dev/zero", "/dev/zero: more than 16 MB"},  // a device read without end
       {"--tilt-csv /dev/zero", "--tilt-csv: /dev/zero: more than 16 MB"},
       {"--maze /tmp", "/tmp: is a directory"},
-      {"--maze clasic", "clasic: neither a built-in maze (classic, prototype) nor a file"},
+      {"--maze clasic", "clasic: neither a built-in maze (classic, brio, prototype) nor a file"},
       {"--quite", "unknown option '--quite'"},  // last, with no value after it
       {"--tilt-timeout -1", "--tilt-timeout: expected 0..1e6 seconds, got '-1'"},
       {"--auto-reset soon", "--auto-reset: expected a number"},

@@ -193,7 +193,7 @@ class BadParamTest(unittest.TestCase):
 
     def test_a_misspelt_built_in_maze_lists_the_built_in_ones(self):
         self.check_refused("bp_twentytwo", ["_maze:=clasic"], "maze", "clasic",
-                           "neither a built-in maze (classic, prototype)")
+                           "neither a built-in maze (classic, brio, prototype)")
 
     def test_a_flag_of_the_wrong_type(self):
         self.check_refused("bp_eighteen", ["_clock:=sometimes"], "clock", "true or false")

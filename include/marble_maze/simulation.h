@@ -173,6 +173,11 @@ class Simulation {
   /// How many substeps this step takes: the params' count, or more where the board turns far
   /// or air drag slows the marble fast.
   int substepsFor() const;
+  /// The step's substeps.
+  void takeSubsteps();
+  /// The step's substeps, and whether they left the marble and the board as they were, to the
+  /// last bit, with no event.
+  bool substepsChangeNothing();
   /// One substep, as its stages: the board, the contacts, a kick at the start, the contacts'
   /// pose, integrate to the next impact and the impacts, the marble's turn, the finish.
   void substep(double h, double start_time);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -380,25 +379,35 @@ bool sameBits(const Marble& a, const Marble& b) {
 void Simulation::step() {
   events_.clear();
   if (!resting_) {
-    // A step is a function of the state (not of the time, which only stamps the events) and of
-    // the inputs: one that changes nothing would change nothing again. Only a board that did not
-    // turn in the last step can be left as it was, so only then is the marble compared (in play
-    // the board turns, and the step pays nothing for it).
-    std::optional<Marble> before;
-    const double roll = board_.roll(), pitch = board_.pitch();
-    const Vec3 spin = board_.angularVelocity();
-    if (spin == Vec3::Zero()) before = marble_;
-    const int substeps = substepsFor();
-    const double h = params_.step / substeps;
-    substep_ = h;
-    for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
-    resting_ = before && events_.empty() && sameBits(*before, marble_) &&
-               marble_maze::sameBits(roll, board_.roll()) &&
-               marble_maze::sameBits(pitch, board_.pitch()) &&
-               marble_maze::sameBits(spin, board_.angularVelocity());
+    // Only a board that did not turn in the last step can be left as it was: only then is the
+    // step watched for a change (in play the board turns, and the step pays nothing for it).
+    if (board_.angularVelocity() == Vec3::Zero())
+      resting_ = substepsChangeNothing();
+    else
+      takeSubsteps();
   }
   ++steps_;
   time_ = time_origin_ + static_cast<double>(steps_ - steps_origin_) * params_.step;
+}
+
+void Simulation::takeSubsteps() {
+  const int substeps = substepsFor();
+  const double h = params_.step / substeps;
+  substep_ = h;
+  for (int i = 0; i < substeps; ++i) substep(h, time_ + i * h);
+}
+
+bool Simulation::substepsChangeNothing() {
+  // A step is a function of the state (not of the time, which only stamps the events) and of
+  // the inputs: one that changes nothing would change nothing again.
+  const Marble before = marble_;
+  const double roll = board_.roll(), pitch = board_.pitch();
+  const Vec3 spin = board_.angularVelocity();
+  takeSubsteps();
+  return events_.empty() && sameBits(before, marble_) &&
+         marble_maze::sameBits(roll, board_.roll()) &&
+         marble_maze::sameBits(pitch, board_.pitch()) &&
+         marble_maze::sameBits(spin, board_.angularVelocity());
 }
 
 void Simulation::substep(double h, double start_time) {

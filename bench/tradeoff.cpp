@@ -331,9 +331,11 @@ int main(int argc, char** argv) {
   // The reference of realistic play for each model and phase: the smallest step, the best
   // integrator.
   std::vector<double> phases;
+  phases.reserve(static_cast<std::size_t>(starts));
   for (int k = 0; k < starts; ++k) phases.push_back(2 * 3.14159265358979323846 * k / starts);
   std::vector<Play> references[2];
   for (mm::Model m : models) {
+    references[static_cast<int>(m)].reserve(phases.size());
     std::cerr << "reference runs (" << name(m) << ", rk4, 1e-4 s x 16, " << starts << " starts)\n";
     for (double phase : phases)
       references[static_cast<int>(m)].push_back(
@@ -345,6 +347,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "[%3d/%zu] %-8s %-20s step %-7g x %-2d\n", done, options.size(),
                  name(o.model), name(o.integrator), o.step, o.substeps);
     std::vector<double> costs, position_errors, impact_errors;
+    costs.reserve(phases.size());
+    impact_errors.reserve(phases.size());
     for (std::size_t k = 0; k < phases.size(); ++k) {
       const Play p = play(o.params(), phases[k]);
       const Play& reference = references[static_cast<int>(o.model)][k];
@@ -357,9 +361,8 @@ int main(int argc, char** argv) {
     const bool rolling = o.model == mm::Model::Rolling;
     out << name(o.model) << ',' << name(o.integrator) << ',' << number(o.step) << ',' << o.substeps
         << ',' << presetOf(o) << ',' << number(cost) << ',' << number(1e9 / cost) << ','
-        << number(quantile(position_errors, 0.5)) << ','
-        << number(quantile(position_errors, 0.9)) << ','
-        << number(quantile(impact_errors, 0.5)) << ',' << number(inclineError(o)) << ','
+        << number(quantile(position_errors, 0.5)) << ',' << number(quantile(position_errors, 0.9))
+        << ',' << number(quantile(impact_errors, 0.5)) << ',' << number(inclineError(o)) << ','
         << number(bounceError(o)) << ',' << (rolling ? number(slipToRollError(o)) : "") << ','
         << (rolling ? number(rollingResistanceError(o)) : "") << ',' << number(dragError(o))
         << std::endl;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <cstring>
 
 namespace marble_maze {
@@ -16,15 +17,21 @@ constexpr double kPi = 3.14159265358979323846;
 /// The most a board tilts either way (rad): the bound of tilt_limit and of every tilt.
 constexpr double kQuarterTurn = kPi / 2;
 
+/// A value's bits.
+inline std::uint64_t bitsOf(double value) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
 /// Whether two values are the same to the last bit: 0 and -0 differ, a NaN is itself.
 inline bool sameBits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
+  return bitsOf(a) == bitsOf(b);
 }
 inline bool sameBits(const Vec3& a, const Vec3& b) {
-  return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+  return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
 }
 inline bool sameBits(const Quat& a, const Quat& b) {
-  return std::memcmp(a.coeffs().data(), b.coeffs().data(), sizeof(double) * 4) == 0;
+  return sameBits(a.w(), b.w()) && sameBits(a.vec(), b.vec());
 }
 
 /// a x b, the same to the bit as Eigen's cross(), with its x and y worked out as one pair: the

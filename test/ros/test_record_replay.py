@@ -417,7 +417,7 @@ class RecordReplayTest(unittest.TestCase):
         # a node started later on this master does not take them (another maze's physics, say)
         # for its user's; those it was given stay.
         given = ["board_position"] + ["maze", "auto_reset", "tilt_timeout", "clock",
-                                      "real_time_factor", "lockstep"]  # sim.launch's
+                                      "lockstep"]  # sim.launch's (real_time_factor: with clock)
         self.assertEqual(sorted(self.left), sorted("/marble_maze/" + k for k in given))
 
     def replay(self, rate):

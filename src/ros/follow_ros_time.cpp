@@ -17,7 +17,8 @@ constexpr double kMaxCatchUp = 1.0;  // s
 
 void FollowRosTime::start(ros::NodeHandle& nh) {
   // At least as often as states are due, or they would leave in bursts, several a tick.
-  const double rate = std::max(c_.settings->update_rate, c_.settings->publish_rate);
+  const double rate =
+      std::min(std::max(c_.settings->update_rate, c_.settings->publish_rate), kMostUpdateRate);
   timer_ = nh.createTimer(ros::Duration(1.0 / rate),
                           [this](const ros::TimerEvent&) { tick(ros::Time::now()); });
   // (On the wall's clock: a timer of ROS time does not fire while a simulated clock has not

@@ -122,7 +122,7 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
 
   NodeSettings s;
   s.maze = readText(pnh, "maze", s.maze);
-  s.update_rate = readNumber(pnh, "update_rate", s.update_rate, 1.0, 10000.0);
+  s.update_rate = readNumber(pnh, "update_rate", s.update_rate, 1.0, kMostUpdateRate);
   s.publish_rate = readNumber(pnh, "publish_rate", s.publish_rate, 0.1, 1e6);
   s.marker_rate = readNumber(pnh, "marker_rate", s.marker_rate, 0.1, 1e6);
   s.session.tilt_timeout = readNumber(pnh, "tilt_timeout", s.session.tilt_timeout, 0.0, 1e6);

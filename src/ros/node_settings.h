@@ -18,6 +18,10 @@
 
 namespace marble_maze_ros {
 
+/// Hz: the most often ROS time is looked at (~update_rate's bound, and the timer's however high
+/// ~publish_rate is).
+constexpr double kMostUpdateRate = 10000.0;
+
 struct NodeSettings {
   std::string maze = "classic";
   double update_rate = 200.0;            // Hz: how often ROS time is looked at for steps due

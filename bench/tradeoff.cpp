@@ -106,7 +106,7 @@ mm::TiltSchedule playProgramme(double phase) {
   return mm::TiltSchedule::parse(text, "the play programme");
 }
 
-// The play: 5 s from each of kStarts phases of the programme, the marble's position taken at
+// The play: 5 s from each of --starts phases of the programme, the marble's position taken at
 // every whole second. Play is chaotic (a micrometre decides whether a slow impact bounces): an
 // error at one instant of one run swings by two orders of magnitude from phase to phase, so the
 // error is a statistic over all of them.

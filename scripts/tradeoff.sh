@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Measures the speed-accuracy trade and writes doc/tradeoff.csv, doc/tradeoff.md and
 # doc/tradeoff.png:  bash scripts/tradeoff.sh [--quick] [--starts N]
-# The full sweep (144 options, 16 starts of play each) takes a few minutes on one core; --quick takes
+# The full sweep (144 options, 16 starts of play each) takes about a minute on one core; --quick takes
 # seconds and writes to the workspace instead of doc/.
 set -euo pipefail
 export PATH="/usr/bin:$PATH"

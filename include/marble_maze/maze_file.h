@@ -62,6 +62,8 @@ Scene loadSceneFile(const std::string& path, const Params& defaults = Params());
 
 /// The names of the mazes built into the program ("classic" first: the default).
 std::vector<std::string> embeddedSceneNames();
+/// The same as messages list them: "classic, brio, prototype".
+std::string embeddedSceneList();
 
 /// A built-in maze by name, or a file when `name_or_path` names no built-in maze.
 Scene loadScene(const std::string& name_or_path, const Params& defaults = Params());

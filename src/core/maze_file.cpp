@@ -577,6 +577,10 @@ std::vector<std::string> embeddedSceneNames() {
   return names;
 }
 
+std::string embeddedSceneList() {
+  return joined(embeddedSceneNames());
+}
+
 Scene loadScene(const std::string& name_or_path, const Params& defaults) {
   if (isGeneratedMazeName(name_or_path))
     return parseScene(generatedMazeText(name_or_path), "<" + name_or_path + ">", defaults);
@@ -588,7 +592,7 @@ Scene loadScene(const std::string& name_or_path, const Params& defaults) {
     // A misspelt built-in name reads as a missing file: say what was looked for.
     throw MazeFileError(
         name_or_path, 0, 0,
-        "neither a built-in maze (" + joined(embeddedSceneNames()) + ") nor a file that exists");
+        "neither a built-in maze (" + embeddedSceneList() + ") nor a file that exists");
   }
   return loadSceneFile(name_or_path, defaults);
 }

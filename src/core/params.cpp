@@ -162,10 +162,10 @@ const Preset kPresets[] = {
 void measuredPhysics(Params& p) {
   p.marble_radius = 0.00635;  // a 12.7 mm ball
   // 9 g in a 12.7 mm ball: 0.009 kg / (4/3 pi 0.00635^3 m^3)
-  p.marble_density = 0.009 / (4.0 / 3.0 * 3.14159265358979323846 * std::pow(0.00635, 3));
+  p.marble_density = 0.009 / (4.0 / 3.0 * kPi * std::pow(0.00635, 3));
   p.rolling_resistance = 0.00118;
-  p.restitution = 0.11;                // the walls' bounce factor
-  p.tilt_limit = 0.17453292519943295;  // 10 degrees
+  p.restitution = 0.11;  // the walls' bounce factor
+  p.tilt_limit = 10 * kPi / 180;
 }
 
 void applyPreset(Params& p, const std::string& name) {

@@ -57,10 +57,6 @@ std::string whyTooManySteps(double time, double step) {
          " s or more";
 }
 
-}  // namespace
-
-namespace {
-
 /// The most the board may turn in one substep (rad): kMostTurn, or less where the board reaches
 /// so far from its pivot, against the marble's size, that the arc of a turn would stray from its
 /// chord by more than kMostChordGap of the radius (a 0.5 mm marble in metre cells).

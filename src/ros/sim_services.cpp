@@ -61,11 +61,8 @@ bool SimServices::onPlace(marble_maze::PlaceMarble::Request& req,
 
 bool SimServices::onLoad(marble_maze::LoadMaze::Request& req,
                          marble_maze::LoadMaze::Response& res) {
-  std::string built_in;
-  for (const std::string& name : mm::embeddedSceneNames())
-    built_in += (built_in.empty() ? "" : ", ") + name;
   const std::string why = req.maze.empty() ? "maze: empty; expected a built-in maze's name (" +
-                                                 built_in + ") or a maze file's path"
+                                                 mm::embeddedSceneList() + ") or a maze file's path"
                                            : control_.load(req.maze);
   return answer(why, "load_maze", "loaded " + mm::inQuotes(req.maze), &res);
 }

@@ -233,6 +233,25 @@ double dragError(const Option& o) {
   return relative(sim.marble().velocity.x(), 20 / (1 + c * k * 20));
 }
 
+/// A marble from rest on a board pitching from level at 0.5 rad/s, 0.3 m from the pivot, for
+/// 1 s: x'' = c (w^2 x + g sin(w t)) along the board (c = 1 sliding, 5/7 rolling), so with
+/// k = w sqrt(c), x = x0 cosh(k t) + B sinh(k t) + D sin(w t), D = -c g / (w^2 + k^2),
+/// B = -D w / k. The error is relative to the distance it moves along the board.
+double turningBoardError(const Option& o) {
+  const double w = 0.5, x0 = 0.3;
+  mm::Params p = placedAt(o.params(), {x0, 0, kRadius}, {w * kRadius, 0, -w * x0});
+  p.tilt_rate_limit = 0;
+  p.tilt_limit = 1.0;
+  mm::Simulation sim({floorOf(500, 10, 0.01), p});
+  if (o.model == mm::Model::Rolling) sim.placeMarble(p.start_position, p.start_velocity, {0, w, 0});
+  sim.setTiltRate(0, w);
+  run(&sim, 1.0);
+  const double c = o.model == mm::Model::Rolling ? 5.0 / 7.0 : 1.0, k = w * std::sqrt(c);
+  const double d = -c * kGravity / (w * w + k * k), b = -d * w / k, t = sim.time();
+  const double x = x0 * std::cosh(k * t) + b * std::sinh(k * t) + d * std::sin(w * t);
+  return relative(sim.marbleInBoard().x() - x0, x - x0);
+}
+
 // --- The sweep -----------------------------------------------------------------------------------
 
 const char* name(mm::Model m) {
@@ -326,7 +345,7 @@ int main(int argc, char** argv) {
   std::ostream& out = out_path.empty() ? std::cout : file;
   out << "model,integrator,step,substeps,preset,ns_per_simulated_s,times_real_time,"
          "play_error_median_m,play_error_p90_m,play_impact_time_error_s,incline,bounce,"
-         "slip_to_roll,rolling_resistance,drag\n";
+         "slip_to_roll,rolling_resistance,drag,turning_board\n";
 
   // The reference of realistic play for each model and phase: the smallest step, the best
   // integrator.
@@ -364,8 +383,8 @@ int main(int argc, char** argv) {
         << number(quantile(position_errors, 0.5)) << ',' << number(quantile(position_errors, 0.9))
         << ',' << number(quantile(impact_errors, 0.5)) << ',' << number(inclineError(o)) << ','
         << number(bounceError(o)) << ',' << (rolling ? number(slipToRollError(o)) : "") << ','
-        << (rolling ? number(rollingResistanceError(o)) : "") << ',' << number(dragError(o))
-        << std::endl;
+        << (rolling ? number(rollingResistanceError(o)) : "") << ',' << number(dragError(o)) << ','
+        << number(turningBoardError(o)) << std::endl;
   }
   return 0;
 }

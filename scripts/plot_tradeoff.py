@@ -22,7 +22,7 @@ MODELS = ["rolling", "smooth"]
 COLOURS = {"semi_implicit_euler": "tab:red", "velocity_verlet": "tab:blue", "rk4": "tab:green"}
 STYLES = {"rolling": "-", "smooth": "--"}
 SUBSTEP_MARKERS = {1: "o", 4: "^", 16: "s"}
-CLOSED_FORMS = ["incline", "bounce", "slip_to_roll", "rolling_resistance", "drag"]
+CLOSED_FORMS = ["incline", "bounce", "slip_to_roll", "rolling_resistance", "drag", "turning_board"]
 FLOOR = 1e-16  # errors at rounding are drawn here on the log axes
 ROUNDING = 1e-12  # relative errors below this are rounding: no order to measure
 
@@ -76,7 +76,7 @@ def plot(rows, path):
     panels = [("play_error_median_m", "play position error, median (m)",
                "Realistic play: the classic maze, 16 starts x 5 s, against the reference"),
               ("closed_form_error", "worst relative error against closed forms",
-               "Closed forms: incline, bounce, slip to roll, resistance, drag")]
+               "Closed forms: incline, bounce, slip to roll, resistance, drag, turning board")]
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), dpi=100)
     for ax, (key, ylabel, title) in zip(axes, panels):
         for model in MODELS:
@@ -144,7 +144,9 @@ def markdown(rows, path):
            "the times of the first five impacts; and relative errors against closed forms: a 10 "
            "degree incline from rest (1 s), the first five apexes of a bounce (e = 0.7, from "
            "5 cm), slip to roll (5/7 of 0.7 m/s), rolling resistance (c_rr 0.01, 2 s), air drag "
-           "on a level floor (20 m/s, 1 s). 'rounding' means below 1e-12." % cpu_name(), "",
+           "on a level floor (20 m/s, 1 s), a marble carried by a board pitching at a constant "
+           "0.5 rad/s (from rest 0.3 m from the pivot, 1 s; the distance it moves along the "
+           "board). 'rounding' means below 1e-12." % cpu_name(), "",
            "![error against cost](tradeoff.png)", "",
            "## Presets", "",
            "| preset | model | integrator | step (s) | substeps | µs per simulated s | x real time "

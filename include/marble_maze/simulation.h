@@ -187,7 +187,7 @@ class Simulation {
   void gatherContacts(const GridFrame& start, double h);
   void pushOut();
   /// The contacts' normals and surface velocities in the pose where the scheme's forces act.
-  void turnContactsToForcePose(const BoardMotion& motion);
+  void turnContactsToForcePose(const BoardMotion& motion, double h);
   /// The substep after its start's impacts, the contacts' normals and surface velocities those
   /// of the board's pose they push in until the first impact; each impact resolved in turn.
   void integrateToImpacts(double h, double start_time, const BoardMotion& motion);
@@ -195,6 +195,11 @@ class Simulation {
   /// The contacts that act over a stretch (acting()): all but those the marble is leaving.
   void chooseActingContacts(double duration, const Vec3& previous_spin);
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
+  /// The velocity of the surface under a contact where the marble is now, as the board moves
+  /// over the substep (a contact's own is where the scheme holds the marble to it).
+  Vec3 startSurfaceVelocity(const Contact& c) const {
+    return frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
+  }
   void keepOnHeldContacts(Sweep* sweep) const;
   void impact(double time);
   void checkFinish(double time);

@@ -599,7 +599,9 @@ TEST(Session, ParamsReadBackExactlyFromTheirText) {
 // changed on purpose. A change to it must be made on purpose, with a note in the README's
 // "Determinism" paragraph saying why.
 TEST(Determinism, AFixedScenarioEndsInThePinnedState) {
-  constexpr std::uint64_t kExpected = 0xb89038b0ee2f291full;  // recorded 2026-12-04
+  // Recorded 2026-12-06: on a turning board the contacts now hold the velocity to the surfaces
+  // of the substep's end (second order there); the scenario's tilts turn the board throughout.
+  constexpr std::uint64_t kExpected = 0xba63a6eea1542936ull;
   Scene scene = loadScene("classic");
   SessionSettings settings;
   settings.auto_reset = 1.0;

@@ -92,6 +92,10 @@ TEST(TradeoffCli, TheQuickRunMeasuresWhatEachSchemeIsKnownToDo) {
   const double ratio = number(find("velocity_verlet", "0.01"), "drag") /
                        number(find("velocity_verlet", "0.001"), "drag");
   EXPECT_NEAR(ratio, 100, 10);
+  // And so is it on a board turning at a constant rate.
+  const double turning = number(find("velocity_verlet", "0.01"), "turning_board") /
+                         number(find("velocity_verlet", "0.001"), "turning_board");
+  EXPECT_NEAR(turning, 100, 10);
   EXPECT_EQ(find("velocity_verlet", "0.001").at("preset"), "realtime");
 }
 

@@ -15,6 +15,7 @@ class FieldForces {
  public:
   explicit FieldForces(const Params& params);
   Vec3 acceleration(const Vec3& velocity) const;
+  const Vec3& gravity() const { return gravity_; }
   /// True when the acceleration is the same at every velocity (no drag).
   bool constant() const { return drag_ == 0; }
   /// 1/m: drag slows a marble at speed v at the rate drag() v (1/s).
@@ -25,16 +26,26 @@ class FieldForces {
   double drag_;  // 1/m: the drag's acceleration is -drag |v| v
 };
 
+/// Where and when in a stretch a scheme samples the dynamics: the marble moved by `moved` from
+/// the stretch's start, `elapsed` seconds into it.
+struct Sample {
+  Vec3 moved = Vec3::Zero();
+  double elapsed = 0;
+};
+
 /// The marble's dynamics as a scheme samples them: its velocities after `duration` from `start`
 /// under the field's forces and the forces of the contacts it rests or rolls on (which keep it
 /// out of their tiles, with friction and rolling resistance), as one first-order step gives
-/// them. Under constant forces, on contacts that hold the marble all along, the change is
-/// linear in `duration`.
+/// them, the forces taken where and when `at` says. Under constant forces, on contacts that
+/// hold the marble all along, the change is linear in `duration`.
 class Dynamics {
  public:
   virtual ~Dynamics() = default;
-  virtual Velocities after(const Velocities& start, double duration) = 0;
-  /// True when the field's forces do not change with the velocity (no drag).
+  virtual Velocities after(const Velocities& start, double duration, const Sample& at) = 0;
+  Velocities after(const Velocities& start, double duration) {
+    return after(start, duration, Sample());
+  }
+  /// True when the forces change neither with the velocity (no drag) nor along the stretch.
   virtual bool constantForces() const = 0;
 };
 
@@ -78,6 +89,10 @@ class Integrator {
   /// Whether its paths bend (impacts found on the curve) or run straight (on the chord). A bent
   /// path can leave a tile and come back to it in one stretch; a straight one cannot.
   virtual bool bends() const { return true; }
+  /// Whether it takes a marble resting on a face of a turning board in the board's frame, where
+  /// the face stands still and the frame's forces change along the stretch (a scheme of several
+  /// samples follows them to its order), rather than with the contacts of the substep's middle.
+  virtual bool followsTheTurn() const { return false; }
 };
 
 /// The scheme of that kind (schemes hold no state: one of each serves every simulation).

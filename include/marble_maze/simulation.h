@@ -153,14 +153,23 @@ class Simulation {
   class ContactDynamics : public Dynamics {
    public:
     explicit ContactDynamics(Simulation* sim) : sim_(sim) {}
-    Velocities after(const Velocities& start, double duration) override;
-    bool constantForces() const override { return sim_->forces_.constant(); }
-    /// A new stretch: the first sample's outcomes say which contacts hold the marble.
-    void beginStretch() { sampled_ = false; }
+    Velocities after(const Velocities& start, double duration, const Sample& at) override;
+    bool constantForces() const override { return !turning_ && sim_->forces_.constant(); }
+    /// From here on the velocities are taken in the frame of a board turning at `spin` (world
+    /// axes as they were when the marble was at `start`, from the pivot), where the contacts
+    /// stand still: the marble feels gravity turning back with the board, and the Coriolis and
+    /// centrifugal forces. Only for a marble on contacts (in flight the world's parabola is
+    /// exact).
+    void followTurn(const Vec3& start, const Vec3& spin);
 
    private:
+    Velocities afterInBoardFrame(const Velocities& start, double duration, const Sample& at);
+
     Simulation* sim_;
     bool sampled_ = false;
+    bool turning_ = false;
+    Vec3 start_ = Vec3::Zero(), spin_ = Vec3::Zero(), axis_ = Vec3::Zero();
+    double rate_ = 0;  // rad/s, |spin_|
   };
 
   /// The board's motion over a substep, as the stages after it take it.
@@ -189,15 +198,21 @@ class Simulation {
   /// The contacts' normals and surface velocities in the pose where the scheme's forces act.
   void turnContactsToForcePose(const BoardMotion& motion, double h);
   /// The substep after its start's impacts, the contacts' normals and surface velocities those
-  /// of the board's pose they push in until the first impact; each impact resolved in turn.
-  void integrateToImpacts(double h, double start_time, const BoardMotion& motion);
+  /// of the board's pose they push in until the first impact (or, `in_board_frame`, the
+  /// start's, the stretch to the first impact taken in the turning board's frame); each impact
+  /// resolved in turn.
+  void integrateToImpacts(double h, double start_time, const BoardMotion& motion,
+                          bool in_board_frame);
   void turnMarble(double h);
   /// The contacts that act over a stretch (acting()): all but those the marble is leaving.
   void chooseActingContacts(double duration, const Vec3& previous_spin);
+  /// Whether the marble moves along every contact, neither approaching nor leaving it.
+  bool restsOnContacts() const;
   void keepOutOfContacts(Trajectory* trajectory, double duration) const;
   /// The velocity of the surface under a contact where the marble is now, as the board moves
   /// over the substep (a contact's own is where the scheme holds the marble to it).
   Vec3 startSurfaceVelocity(const Contact& c) const {
+    if (in_board_frame_) return Vec3::Zero();  // where the board stands still
     return frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
   }
   void keepOnHeldContacts(Sweep* sweep) const;
@@ -236,7 +251,8 @@ class Simulation {
   const std::vector<Contact>& acting() const { return all_act_ ? contacts_ : some_acting_; }
   bool all_act_ = true;
   std::vector<Contact> some_acting_;
-  double substep_ = 0;  // s: the last step's substep (shorter when the step was cut)
+  double substep_ = 0;           // s: the last step's substep (shorter when the step was cut)
+  bool in_board_frame_ = false;  // the stretch being taken is in the turning board's frame
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };
 

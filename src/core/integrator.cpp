@@ -66,7 +66,7 @@ class VelocityVerlet : public Integrator {
     const double h = stretch.duration;
     Velocities end = dynamics.after(start, h);
     if (!dynamics.constantForces()) {
-      const Velocities again = dynamics.after(end, h);
+      const Velocities again = dynamics.after(end, h, {start.linear * h, h});
       end = plus(start, plus(minus(end, start), minus(again, end), 1), 0.5);
     }
     // The displacement (v0 + v1) h / 2 from a start at v0 ends at v1.
@@ -76,7 +76,9 @@ class VelocityVerlet : public Integrator {
 
 /// Classical fourth-order Runge-Kutta on the constrained dynamics: each stage's acceleration is
 /// what the field's forces and the contacts give together, so that drag on a rolling marble is
-/// fourth order too. Under constant forces one stage is exact: it is velocity Verlet.
+/// fourth order too, and so is a marble on a turning board, taken in the board's frame where the
+/// frame's forces change along the stretch. Under constant forces one stage is exact: it is
+/// velocity Verlet.
 class RungeKutta4 : public Integrator {
  public:
   Trajectory advance(Dynamics& dynamics, const Velocities& start,
@@ -87,17 +89,18 @@ class RungeKutta4 : public Integrator {
     const Velocities& v1 = start;
     const Velocities k1 = minus(dynamics.after(v1, h), v1);
     const Velocities v2 = plus(start, k1, 0.5);
-    const Velocities k2 = minus(dynamics.after(v2, h), v2);
+    const Velocities k2 = minus(dynamics.after(v2, h, {v1.linear * (0.5 * h), 0.5 * h}), v2);
     const Velocities v3 = plus(start, k2, 0.5);
-    const Velocities k3 = minus(dynamics.after(v3, h), v3);
+    const Velocities k3 = minus(dynamics.after(v3, h, {v2.linear * (0.5 * h), 0.5 * h}), v3);
     const Velocities v4 = plus(start, k3, 1);
-    const Velocities k4 = minus(dynamics.after(v4, h), v4);
+    const Velocities k4 = minus(dynamics.after(v4, h, {v3.linear * h, h}), v4);
     Velocities end = start;
     for (const auto& [k, w] : {std::pair{k1, 1.0}, {k2, 2.0}, {k3, 2.0}, {k4, 1.0}})
       end = plus(end, k, w / 6);
     const Vec3 displacement = (v1.linear + 2 * v2.linear + 2 * v3.linear + v4.linear) * (h / 6);
     return curve(start, end, displacement, displacement * (2 / h) - start.linear, h);
   }
+  bool followsTheTurn() const override { return true; }
 };
 
 }  // namespace

@@ -422,8 +422,15 @@ void Simulation::substep(double h, double start_time) {
     impact(start_time);
     motion.previous_spin = motion.start.angular_velocity;
   }
-  turnContactsToForcePose(motion, h);
-  integrateToImpacts(h, start_time, motion);
+  // A scheme that follows the turn takes a marble resting on one face of a turning board in the
+  // board's frame, where the face stands in the pose of the start; otherwise the contacts push
+  // along the middle's. (Against two contacts at once, a stick turning to slip on one of them
+  // between stages makes the stages disagree: the substep is taken as a one-sample scheme
+  // takes it.)
+  const bool in_board_frame = contacts_.size() == 1 && !frame_.angular_velocity.isZero(0) &&
+                              integrator_->followsTheTurn() && restsOnContacts();
+  if (!in_board_frame) turnContactsToForcePose(motion, h);
+  integrateToImpacts(h, start_time, motion, in_board_frame);
   turnMarble(h);
   checkFinish(start_time + h);
 }
@@ -518,13 +525,49 @@ void Simulation::impact(double time) {
           {time, EventKind::Collision, contacts_[i].tile, outcomes_[i].approach_speed});
 }
 
-Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration) {
+void Simulation::ContactDynamics::followTurn(const Vec3& start, const Vec3& spin) {
+  turning_ = true;
+  start_ = start;
+  spin_ = spin;
+  rate_ = spin.norm();
+  axis_ = spin / rate_;
+}
+
+Velocities Simulation::ContactDynamics::after(const Velocities& start, double duration,
+                                              const Sample& at) {
+  if (turning_) return afterInBoardFrame(start, duration, at);
   Velocities b{start.linear + sim_->forces_.acceleration(start.linear) * duration, start.angular};
   if (sim_->acting().empty()) return b;  // in flight: nothing constrains it (and no work is done)
   // The first sample's outcomes say which contacts hold the marble; later ones are scratch.
   sim_->solver_.constrain(sim_->acting(), &b,
                           sampled_ ? &sim_->sample_outcomes_ : &sim_->acting_outcomes_);
   if (!sampled_) sim_->board_work_ += sim_->solver_.surfaceWork();
+  sampled_ = true;
+  return b;
+}
+
+Velocities Simulation::ContactDynamics::afterInBoardFrame(const Velocities& start, double duration,
+                                                          const Sample& at) {
+  // In the frame turning at w: gravity turned back by the board's turn since the start
+  // (Rodrigues' formula), drag on the velocity through the air (the frame's velocity plus the
+  // board's there), the Coriolis force -2 w x u and the centrifugal -w x (w x y). The spin
+  // relative to the board turns back likewise: -w x s. (Only with contacts: see followTurn.)
+  const Vec3& g = sim_->forces_.gravity();
+  const double angle = rate_ * at.elapsed, c = std::cos(angle), s = std::sin(angle);
+  const Vec3 gravity = c * g - s * cross(axis_, g) + ((1 - c) * axis_.dot(g)) * axis_;
+  const Vec3 carried = cross(spin_, start_ + at.moved);  // the board's velocity there
+  const Vec3 drag = sim_->forces_.acceleration(start.linear + carried) - g;
+  const Vec3 a = gravity + drag - 2 * cross(spin_, start.linear) - cross(spin_, carried);
+  const Velocities free{start.linear + a * duration,
+                        start.angular - cross(spin_, start.angular) * duration};
+  Velocities b = free;
+  sim_->solver_.constrain(sim_->acting(), &b,
+                          sampled_ ? &sim_->sample_outcomes_ : &sim_->acting_outcomes_);
+  // Its surfaces stand still here: the work the board does through them is the contacts'
+  // impulse on the marble against the board's motion there, J . (w x y) + L . w.
+  if (!sampled_)
+    sim_->board_work_ += sim_->mass_ * (b.linear - free.linear).dot(carried) +
+                         sim_->inertia_ * (b.angular - free.angular).dot(spin_);
   sampled_ = true;
   return b;
 }
@@ -559,6 +602,18 @@ void Simulation::chooseActingContacts(double duration, const Vec3& previous_spin
       some_acting_.push_back(c);
     }
   }
+}
+
+bool Simulation::restsOnContacts() const {
+  // Neither approaching a contact nor leaving it faster than resting: the marble moves along the
+  // board. (Where the board's change of speed since the last substep, or an impact, left it
+  // moving across a contact, the substep is taken with the contacts of its middle, as by a
+  // scheme that samples them once: the stages of one that samples them more often would take
+  // up an approach only in part, RK4's leaving 3/8 of it.)
+  for (const Contact& c : contacts_)
+    if (std::abs((marble_.velocity - startSurfaceVelocity(c)).dot(c.normal)) > kRestingSpeed)
+      return false;
+  return true;
 }
 
 void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
@@ -604,14 +659,14 @@ void Simulation::keepOnHeldContacts(Sweep* sweep) const {
   }
 }
 
-void Simulation::integrateToImpacts(double h, double start_time, const BoardMotion& motion) {
+void Simulation::integrateToImpacts(double h, double start_time, const BoardMotion& motion,
+                                    bool in_board_frame) {
   // The substep impact by impact: over what is left of it the field's forces and the contacts'
   // give the integrator's path, which is swept on the board for the first impact. The first
   // stretch is swept from where the marble was on the board at the start (the board then in its
   // start pose) to where it will be at the end, so that a board moving meanwhile is swept too;
   // after an impact the marble stands where the board carries it by the substep's end, and
   // moves on only as fast as it moves relative to the board.
-  ContactDynamics dynamics(this);
   double done = 0;  // fraction of the substep
   for (int impacts = 0; impacts < kMaxImpactsPerSubstep; ++impacts) {
     const double rest = (1 - done) * h;
@@ -621,20 +676,50 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
       chooseActingContacts(rest, motion.previous_spin);
     else
       chooseActingContacts(rest, frame_.angular_velocity);
-    dynamics.beginStretch();
-    Trajectory path = integrator_->advance(dynamics, {marble_.velocity, marble_.angular_velocity},
-                                           Stretch{rest, h, impacts > 0});
+    ContactDynamics dynamics(this);  // (its first sample says which contacts hold the marble)
+    Velocities start{marble_.velocity, marble_.angular_velocity};
+    // In the board's frame (the start's pose, turning with the board) the contacts stand still
+    // and the marble moves relative to the board; its path there is its path on the board. (A
+    // marble leaving every contact flies on the world's parabola, exactly.)
+    const bool relative = in_board_frame && impacts == 0 && !acting().empty();
+    in_board_frame_ = relative;
+    if (relative) {
+      const Vec3& w = frame_.angular_velocity;
+      dynamics.followTurn(marble_.position, w);
+      start = {start.linear - frame_.surfaceVelocity(marble_.position), start.angular - w};
+      for (std::vector<Contact>* list : {&contacts_, &some_acting_})
+        for (Contact& c : *list) c.surface_velocity.setZero();
+      // It moves along them (restsOnContacts), exactly: its stages then agree on them.
+      for (const Contact& c : acting()) start.linear -= start.linear.dot(c.normal) * c.normal;
+    }
+    Trajectory path = integrator_->advance(dynamics, start, Stretch{rest, h, impacts > 0});
     keepOutOfContacts(&path, rest);
+    in_board_frame_ = false;
     Sweep sweep;
     sweep.radius = params_.marble_radius;
     sweep.margin = kContactMargin;
     sweep.resting_rate = kRestingSpeed * rest;
-    sweep.bend = frame_.rotation.transpose() * path.second;
-    if (impacts == 0) {
+    if (relative) {
+      const Mat3 to_grid = motion.start.rotation.transpose();
+      sweep.bend = to_grid * path.second;
+      sweep.from = motion.start.toGrid(marble_.position);
+      sweep.path = to_grid * path.displacement() - sweep.bend;
+      keepOnHeldContacts(&sweep);
+      // Back to the world: the velocities relative to the board turned with it, plus its own.
+      const Mat3 turn = frame_.rotation * to_grid;
+      path.velocity = turn * path.velocity;
+      path.velocity_change = turn * path.velocity_change;
+      path.start_spin = turn * path.start_spin + frame_.angular_velocity;
+      path.end.linear = turn * path.end.linear;
+      path.end.angular = turn * path.end.angular + frame_.angular_velocity;
+      // (The board's velocity where the marble ends is added below, once it is placed.)
+    } else if (impacts == 0) {
+      sweep.bend = frame_.rotation.transpose() * path.second;
       sweep.from = motion.start.toGrid(marble_.position);
       sweep.path = frame_.toGrid(marble_.position + path.displacement()) - sweep.from - sweep.bend;
       keepOnHeldContacts(&sweep);
     } else {
+      sweep.bend = frame_.rotation.transpose() * path.second;
       const Vec3 carried = frame_.surfaceVelocity(marble_.position) * rest;
       sweep.from = frame_.toGrid(marble_.position);
       sweep.path = frame_.rotation.transpose() * (path.displacement() - carried) - sweep.bend;
@@ -651,11 +736,13 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
     if (!hits) {
       marble_.position = frame_.toWorld(sweep.at(1));
       marble_.velocity = path.end.linear;
+      if (relative) marble_.velocity += frame_.surfaceVelocity(marble_.position);
       marble_.angular_velocity = path.end.angular;
       return;
     }
     marble_.position = frame_.toWorld(sweep.at(hit.fraction));
     marble_.velocity = path.velocityAt(hit.fraction);
+    if (relative) marble_.velocity += frame_.surfaceVelocity(marble_.position);
     marble_.angular_velocity = path.spinAt(hit.fraction);
     done += (1 - done) * hit.fraction;
     findContacts(maze_, frame_, marble_.position, params_.marble_radius, kContactMargin,

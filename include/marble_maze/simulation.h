@@ -216,6 +216,10 @@ class Simulation {
     return frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
   }
   void keepOnHeldContacts(Sweep* sweep) const;
+  /// Where and when (`fraction` of the substep) a path swept against a turning board truly
+  /// meets the face it hit (the sweep's `met` for another tile, or a still board).
+  Vec3 meetTurningFace(const Trajectory& path, const BoardMotion& motion, const Contact& face,
+                       double* fraction, const Vec3& met) const;
   void impact(double time);
   void checkFinish(double time);
   void hold(MarblePhase phase, EventKind kind, const Index3& tile, double time);

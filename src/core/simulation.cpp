@@ -740,7 +740,10 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
       marble_.angular_velocity = path.end.angular;
       return;
     }
-    marble_.position = frame_.toWorld(sweep.at(hit.fraction));
+    Vec3 met = sweep.at(hit.fraction);
+    if (impacts == 0 && acting().empty())  // a flight: its path is the world's parabola
+      met = meetTurningFace(path, motion, hit.contact, &hit.fraction, met);
+    marble_.position = frame_.toWorld(met);
     marble_.velocity = path.velocityAt(hit.fraction);
     if (relative) marble_.velocity += frame_.surfaceVelocity(marble_.position);
     marble_.angular_velocity = path.spinAt(hit.fraction);
@@ -755,6 +758,35 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
     if (!(done < 1)) return;  // at the very end of the substep: nothing left to move
   }
   // A marble wedged in a corner meets a few impacts in one substep; beyond these it stays put.
+}
+
+Vec3 Simulation::meetTurningFace(const Trajectory& path, const BoardMotion& motion,
+                                 const Contact& face, double* fraction, const Vec3& met) const {
+  // The sweep follows the path relative to a turning board as a quadratic in s, off the true
+  // one by some nanometres (the board's turn within the substep, second order): where it meets
+  // a face, the instant is found again on the true path, the world's curve seen from the board
+  // in its pose at s, by Newton's method (two or three steps from the sweep's instant).
+  const Vec3& n = face.grid_normal;
+  const bool is_face = (n.array() != 0).count() == 1;
+  if (!is_face || frame_.angular_velocity.isZero(0)) return met;
+  const double roll = motion.start_roll, pitch = motion.start_pitch;
+  const double turn_roll = board_.roll() - roll, turn_pitch = board_.pitch() - pitch;
+  const auto at = [&](double s) {
+    const Mat3 pose = Board::rotationFor(roll + s * turn_roll, pitch + s * turn_pitch);
+    return Vec3(pose.transpose() * (marble_.position + s * (path.first + s * path.second)) +
+                frame_.grid_pivot);
+  };
+  const auto gap = [&](double s) { return n.dot(at(s) - face.grid_point) - params_.marble_radius; };
+  double s = *fraction;
+  constexpr double kDs = 1e-7;  // of the substep: the secant's width
+  for (int i = 0; i < 3; ++i) {
+    const double g = gap(s), slope = (gap(s + kDs) - gap(s - kDs)) / (2 * kDs);
+    if (!(slope < 0)) return met;  // not approaching: the sweep's instant stands
+    s -= g / slope;
+  }
+  if (!(std::abs(s - *fraction) < 1e-3 && s >= 0 && s <= 1)) return met;
+  *fraction = s;
+  return at(s);
 }
 
 void Simulation::checkFinish(double time) {

@@ -208,11 +208,11 @@ class Simulation {
   void chooseActingContacts(double duration, const Vec3& previous_spin);
   /// Whether the marble moves along every contact, neither approaching nor leaving it.
   bool restsOnContacts() const;
-  void keepOutOfContacts(Trajectory* trajectory, double duration) const;
+  /// `in_board_frame`: the path is relative to the board, where its surfaces stand still.
+  void keepOutOfContacts(Trajectory* trajectory, double duration, bool in_board_frame) const;
   /// The velocity of the surface under a contact where the marble is now, as the board moves
   /// over the substep (a contact's own is where the scheme holds the marble to it).
   Vec3 startSurfaceVelocity(const Contact& c) const {
-    if (in_board_frame_) return Vec3::Zero();  // where the board stands still
     return frame_.surfaceVelocity(marble_.position - params_.marble_radius * c.normal);
   }
   void keepOnHeldContacts(Sweep* sweep) const;
@@ -255,8 +255,7 @@ class Simulation {
   const std::vector<Contact>& acting() const { return all_act_ ? contacts_ : some_acting_; }
   bool all_act_ = true;
   std::vector<Contact> some_acting_;
-  double substep_ = 0;           // s: the last step's substep (shorter when the step was cut)
-  bool in_board_frame_ = false;  // the stretch being taken is in the turning board's frame
+  double substep_ = 0;  // s: the last step's substep (shorter when the step was cut)
   std::vector<ContactOutcome> acting_outcomes_, sample_outcomes_;
 };
 

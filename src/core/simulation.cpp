@@ -616,13 +616,14 @@ bool Simulation::restsOnContacts() const {
   return true;
 }
 
-void Simulation::keepOutOfContacts(Trajectory* path, double duration) const {
+void Simulation::keepOutOfContacts(Trajectory* path, double duration, bool in_board_frame) const {
   // The path may not run into a tile the marble touches, whatever the velocities it was built
   // from said: it would end inside the tile. Its rate is linear in s, so a path that leaves
   // neither at its start nor at its end is clear of the tile all along.
   for (const Contact& c : acting()) {
     const Vec3& n = c.normal;
-    const double start_into = (path->start_rate - startSurfaceVelocity(c)).dot(n);
+    const Vec3 surface = in_board_frame ? Vec3::Zero() : startSurfaceVelocity(c);
+    const double start_into = (path->start_rate - surface).dot(n);
     if (start_into < 0) {
       path->first -= start_into * duration * n;
       path->velocity -= start_into * n;
@@ -682,7 +683,6 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
     // and the marble moves relative to the board; its path there is its path on the board. (A
     // marble leaving every contact flies on the world's parabola, exactly.)
     const bool relative = in_board_frame && impacts == 0 && !acting().empty();
-    in_board_frame_ = relative;
     if (relative) {
       const Vec3& w = frame_.angular_velocity;
       dynamics.followTurn(marble_.position, w);
@@ -693,8 +693,7 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
       for (const Contact& c : acting()) start.linear -= start.linear.dot(c.normal) * c.normal;
     }
     Trajectory path = integrator_->advance(dynamics, start, Stretch{rest, h, impacts > 0});
-    keepOutOfContacts(&path, rest);
-    in_board_frame_ = false;
+    keepOutOfContacts(&path, rest, relative);
     Sweep sweep;
     sweep.radius = params_.marble_radius;
     sweep.margin = kContactMargin;

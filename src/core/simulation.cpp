@@ -698,9 +698,11 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
     sweep.radius = params_.marble_radius;
     sweep.margin = kContactMargin;
     sweep.resting_rate = kRestingSpeed * rest;
+    // The path's bend in the grid frame, from the pose the path is taken in.
+    sweep.bend = relative ? Vec3(motion.start.rotation.transpose() * path.second)
+                          : Vec3(frame_.rotation.transpose() * path.second);
     if (relative) {
       const Mat3 to_grid = motion.start.rotation.transpose();
-      sweep.bend = to_grid * path.second;
       sweep.from = motion.start.toGrid(marble_.position);
       sweep.path = to_grid * path.displacement() - sweep.bend;
       keepOnHeldContacts(&sweep);
@@ -713,12 +715,10 @@ void Simulation::integrateToImpacts(double h, double start_time, const BoardMoti
       path.end.angular = turn * path.end.angular + frame_.angular_velocity;
       // (The board's velocity where the marble ends is added below, once it is placed.)
     } else if (impacts == 0) {
-      sweep.bend = frame_.rotation.transpose() * path.second;
       sweep.from = motion.start.toGrid(marble_.position);
       sweep.path = frame_.toGrid(marble_.position + path.displacement()) - sweep.from - sweep.bend;
       keepOnHeldContacts(&sweep);
     } else {
-      sweep.bend = frame_.rotation.transpose() * path.second;
       const Vec3 carried = frame_.surfaceVelocity(marble_.position) * rest;
       sweep.from = frame_.toGrid(marble_.position);
       sweep.path = frame_.rotation.transpose() * (path.displacement() - carried) - sweep.bend;

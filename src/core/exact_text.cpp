@@ -16,8 +16,8 @@ char* writeExact(char* first, double value) {
   // the exponent is below the digits' count (or below six) the number is laid out fixed, as %g
   // lays out that many digits.
   char* end = std::to_chars(first, first + kExactTextSize, value, std::chars_format::general).ptr;
-  char* e = std::find(first, end, 'e');
-  if (e == end) return end;  // fixed already, or inf
+  char* e = end - 4;  // (an exponent has two or three digits: "e+06", "e-300")
+  if (end - first < 5 || (*e != 'e' && *--e != 'e')) return end;  // fixed already, or inf
   int exponent = 0;
   std::from_chars(e + (e[1] == '+' ? 2 : 1), end, exponent);
   char* digits = first + (first[0] == '-');

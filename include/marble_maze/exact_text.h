@@ -13,7 +13,7 @@ constexpr std::size_t kExactTextSize = 32;
 /// Writes `value` at `first` in the shortest form that reads back exactly, laid out as printf's
 /// %g with at least six digits ("0.1", "0.0001", "500000", "1e-05", "-2.5e+158", "inf"; NaN as
 /// "nan", whatever its sign), and returns the end. `first` must have kExactTextSize characters
-/// of room.
+/// of room, all of which it may write.
 char* writeExact(char* first, double value);
 
 /// The same as a string.

@@ -2,9 +2,10 @@
 # ROS lockstep as a roscpp agent runs it (bench/lockstep_agent.cpp): a node with ~lockstep at
 # 55 Hz and the `fast` preset on a private master, PERIODS commands each answered by the state
 # after it. Prints the periods a second and the node's CPU a period, with only marble_state
-# listened to and with every output listened to, and the physics of a period in process
-# (marble_maze_bench's hand-written loop) measured in the same run. BASELINE_WS, a workspace
-# built from another commit, adds its node's figures to the same run.
+# listened to and with every output listened to; then the node's nodelet and the example agent's
+# (examples/lockstep_agent_nodelet.cpp) in one manager, and the CPU of that process a period;
+# and the physics of a period in process (marble_maze_bench's hand-written loop), all in the same
+# run. BASELINE_WS, a workspace built from another commit, adds its node's figures to the run.
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
 . "$(dirname "$0")/workspace.sh"
@@ -20,8 +21,9 @@ run() {
   roscore -p 11398 >/dev/null 2>&1 &
   local core=$!
   sleep 3
-  "$ws/devel/lib/marble_maze/marble_maze_node" _lockstep:=0.01818181818181818 _preset:=fast \
-    >/dev/null 2>&1 &
+  # (its own workspace's libraries first: this one's are on the path, and differ)
+  LD_LIBRARY_PATH="$ws/devel/lib:$LD_LIBRARY_PATH" "$ws/devel/lib/marble_maze/marble_maze_node" \
+    _lockstep:=0.01818181818181818 _preset:=fast >/dev/null 2>&1 &
   local node=$!
   printf '%-40s ' "$label"
   "$WS/devel/lib/marble_maze/lockstep_agent" _periods:="$periods" _node_pid:="$node" "$@" ||
@@ -32,9 +34,43 @@ run() {
   wait "$core" || true
 }
 
+# nodelets: the node's nodelet and the agent's in one manager of one worker thread (the two take
+# turns: a second thread would only add hand-offs), on a master of their own.
+nodelets() {
+  roscore -p 11398 >/dev/null 2>&1 &
+  local core=$!
+  sleep 3
+  rosparam set /marble_maze/lockstep 0.01818181818181818
+  rosparam set /marble_maze/preset fast
+  rosparam set /agent/periods "$periods"
+  local log
+  log=$(mktemp)
+  /usr/lib/nodelet/nodelet manager __name:=manager _num_worker_threads:=1 >"$log" 2>&1 &
+  local manager=$!
+  /usr/lib/nodelet/nodelet load marble_maze/MazeNodelet manager __name:=marble_maze \
+    >/dev/null 2>&1 &
+  local node=$!
+  /usr/lib/nodelet/nodelet load marble_maze/LockstepAgentNodelet manager __name:=agent \
+    >/dev/null 2>&1 &
+  local agent=$!
+  printf '%-40s ' "nodelets, node and agent in one:"
+  local waited=0
+  until grep -q 'periods/s' "$log" || [ $waited -ge 120 ]; do
+    sleep 1
+    waited=$((waited + 1))
+  done
+  grep 'periods/s' "$log" || echo "failed"
+  kill -INT "$node" "$agent" "$manager"
+  wait "$node" "$agent" "$manager" || true
+  kill "$core"
+  wait "$core" || true
+  rm -f "$log"
+}
+
 echo "ROS lockstep, 55 Hz, fast preset, $periods periods a case:"
 run "$WS" "this node, marble_state alone:"
 run "$WS" "this node, every output listened:" _listen_all:=true
+nodelets
 if [ -n "${BASELINE_WS:-}" ]; then
   run "$BASELINE_WS" "baseline node, marble_state alone:"
   run "$BASELINE_WS" "baseline node, every output listened:" _listen_all:=true

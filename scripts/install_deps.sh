@@ -11,6 +11,7 @@ packages=("$@")
   libtf2-ros-dev libtf2-eigen-dev libvisualization-msgs-dev libgeometry-msgs-dev libstd-srvs-dev
   libdiagnostic-updater-dev libdynamic-reconfigure-config-init-mutex-dev libnav-msgs-dev
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev librosbag-dev libtopic-tools-dev
+  libnodeletlib-dev libnodelet-dev libnodeletlib-tools pluginlib-dev
   python3-rospy python3-tf2-ros python3-std-srvs python3-visualization-msgs python3-geometry-msgs
   python3-dynamic-reconfigure python3-nav-msgs python3-diagnostic-msgs python3-yaml
   rosbash rviz valgrind python3-matplotlib clang libclang-rt-14-dev

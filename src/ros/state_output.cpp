@@ -3,6 +3,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
+#include <boost/make_shared.hpp>
 #include <cmath>
 
 #include "marble_maze/MazeEvent.h"
@@ -48,8 +49,11 @@ void StateOutput::publishScene(const mm::Simulation& sim, bool replacing) {
 void StateOutput::publishState(const mm::Simulation& sim, const ros::Time& stamp) {
   // Each message is built only when someone listens: a lockstep agent that reads marble_state
   // alone pays for nothing else.
+  // (marble_state goes as a shared message: a subscriber in the same process, a nodelet, gets it
+  // without a copy and without a wake of roscpp's poll thread.)
   if (state_pub_.getNumSubscribers() > 0)
-    state_pub_.publish(marbleStateMessage(sim, stamp, settings_.frames));
+    state_pub_.publish(boost::make_shared<marble_maze::MarbleState>(
+        marbleStateMessage(sim, stamp, settings_.frames)));
   if (odom_pub_.getNumSubscribers() > 0)
     odom_pub_.publish(odometryMessage(sim, stamp, settings_.frames));
   if (stamp <= last_tf_stamp_) return;

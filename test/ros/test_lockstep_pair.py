@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""rostest of the example agent's nodelet in lockstep with the node's in one manager (run by
+lockstep_pair.test, control period 0.02 s, 2000 periods): the states
+answer exactly 2000 commands, one period apart, and stop."""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+
+from marble_maze.msg import MarbleState
+
+PERIOD_NS = 20 * 10**6
+PERIODS = 2000  # as lockstep_nodelet.test sets the agent's ~periods
+
+
+class LockstepPairTest(unittest.TestCase):
+    def test_the_agent_takes_exactly_its_periods_one_period_apart(self):
+        stamps, arrived = [], threading.Condition()
+
+        def on_state(msg):
+            with arrived:
+                stamps.append(msg.header.stamp.to_nsec())
+                arrived.notify()
+
+        rospy.Subscriber("marble_state", MarbleState, on_state, queue_size=10000)
+        with arrived:  # (the agent starts 5 s after it sees the node)
+            self.assertTrue(arrived.wait_for(lambda: stamps and stamps[-1] >= PERIODS * PERIOD_NS,
+                                             timeout=40), "%d states" % len(stamps))
+        time.sleep(1.0)  # none after the last
+        with arrived:
+            answers = [s for s in stamps if s > 0]
+        self.assertEqual(answers, [k * PERIOD_NS for k in range(1, PERIODS + 1)])
+
+
+if __name__ == "__main__":
+    rospy.init_node("test_lockstep_pair")
+    rostest.rosrun("marble_maze", "lockstep_pair", LockstepPairTest)

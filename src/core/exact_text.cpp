@@ -15,7 +15,8 @@ char* writeExact(char* first, double value) {
   // The shortest digits that read back exactly, in one call, as "d.ddde-XX". They are then laid
   // out as %g lays out that many digits, fixed where -4 <= exponent < max(digits, 6): "0.01234",
   // "1234567". (to_chars's own general form costs a fifth more, and still writes "1.234567e+06".)
-  // The copies are of a fixed 16 bytes, more than the digits need: a move or two each.
+  // The copies are of a fixed 16 bytes, more than the digits need (a move or two each), which
+  // kExactTextSize leaves room for.
   char text[kExactTextSize + 16];
   const char* end =
       std::to_chars(text, text + kExactTextSize, value, std::chars_format::scientific).ptr;

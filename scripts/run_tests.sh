@@ -23,7 +23,7 @@ sanitized_tests() {  # in the background: the idle class, which the builds and t
 }
 sanitized_tests > "$WS/sanitize/run_tests.out" 2>&1 &
 sanitized=$!
-echo "gtest, unittest and rostest (about 4 minutes; log: $WS/run_tests.log)"
+echo "gtest, unittest and rostest (about 5 minutes; log: $WS/run_tests.log)"
 (cd "$WS" && catkin_make run_tests -j2) > "$WS/run_tests.log" 2>&1
 status=$?
 if [ $status -ne 0 ]; then

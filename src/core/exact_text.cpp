@@ -35,7 +35,8 @@ char* writeExact(char* first, double value) {
   *out = '-';
   out += negative;
   if (exponent < 0) {  // "0.0" and zeros, then the digits
-    std::memcpy(out, "0.0000", 6);
+    std::memset(out, '0', 6);
+    out[1] = '.';
     out += 1 - exponent;
     *out++ = digits[0];
     std::memcpy(out, digits + 2, 16);
@@ -44,7 +45,7 @@ char* writeExact(char* first, double value) {
   *out++ = digits[0];
   std::memcpy(out, digits + 2, 16);
   if (count <= exponent + 1) {  // a whole number: the digits, then zeros
-    std::memcpy(out + count - 1, "0000000000000000", 16);
+    std::memset(out + count - 1, '0', 16);
     return out + exponent;
   }
   out += exponent;  // the digits before the point are in place; the point, then the rest

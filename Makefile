@@ -24,9 +24,11 @@ check: build
 demo: build
 	@bash scripts/demo.sh $(ARGS)
 
-# The step's cost (Google Benchmark), each case also as a ratio to free flight in the same run.
+# The step's cost (Google Benchmark), each case also as a ratio to free flight in the same run;
+# then ROS lockstep's periods a second (scripts/bench_lockstep.sh, about a minute).
 bench: build
 	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"
+	@bash scripts/bench_lockstep.sh
 
 # Instructions a step (callgrind), which no machine's speed or load moves: CASES is a regex of
 # make bench's cases (default: free flight, open floor, mazes), each run for STEPS steps.

@@ -1,79 +1,21 @@
-// marble_maze/LockstepAgentNodelet: a roscpp agent in lockstep as a nodelet. Loaded into the
-// manager of a MazeNodelet started with ~lockstep, it waits ~settle seconds (default 0.5) once
-// the two see each other, sends ~periods tilt commands (a circling tilt), each as the state
-// answering the one before arrives, then prints the periods a second of wall time and the CPU its
-// manager's process spent a period (the node's and the agent's both), and stops.
-// scripts/bench_lockstep.sh measures lockstep with it.
+// marble_maze/LockstepAgentNodelet: a roscpp agent in lockstep (lockstep_agent.h) as a nodelet,
+// to load into the manager of a MazeNodelet started with ~lockstep. It prints its figures in the
+// manager's output. scripts/bench_lockstep.sh measures lockstep with it.
 #include <nodelet/nodelet.h>
-#include <ros/ros.h>
-#include <time.h>
 
-#include <boost/make_shared.hpp>
-#include <cmath>
-#include <cstdio>
+#include <memory>
 #include <pluginlib/class_list_macros.hpp>
 
-#include "marble_maze/BoardTilt.h"
-#include "marble_maze/MarbleState.h"
+#include "lockstep_agent.h"
 
 namespace marble_maze_examples {
 
 class LockstepAgentNodelet : public nodelet::Nodelet {
   void onInit() override {
-    ros::NodeHandle& nh = getNodeHandle();
-    periods_ = getPrivateNodeHandle().param("periods", 5000);
-    settle_ = ros::WallDuration(getPrivateNodeHandle().param("settle", 0.5));
-    tilt_ = nh.advertise<marble_maze::BoardTilt>("tilt", 10);
-    state_ = nh.subscribe("marble_state", 10, &LockstepAgentNodelet::answered, this);
-    wait_ = nh.createWallTimer(ros::WallDuration(0.01), &LockstepAgentNodelet::start, this);
+    agent_ = std::make_unique<LockstepAgent>(getNodeHandle(), getPrivateNodeHandle());
   }
 
-  /// Once the node and the agent see each other, and ~settle later (every link made, and a
-  /// listener started meanwhile sees the whole run), the first command.
-  void start(const ros::WallTimerEvent&) {
-    if (tilt_.getNumSubscribers() == 0 || state_.getNumPublishers() == 0) return;
-    if (connected_.isZero()) connected_ = ros::WallTime::now();
-    if (ros::WallTime::now() - connected_ < settle_) return;
-    wait_.stop();
-    begin_ = ros::WallTime::now();
-    cpu_before_ = processCpuSeconds();
-    command();
-  }
-
-  void answered(const marble_maze::MarbleState::ConstPtr& state) {
-    if (begin_.isZero() || done_ == periods_ || state->header.stamp <= last_)
-      return;  // (not the answer to a command)
-    last_ = state->header.stamp;
-    if (++done_ < periods_) return command();
-    const double wall = (ros::WallTime::now() - begin_).toSec();
-    const double cpu = processCpuSeconds() - cpu_before_;
-    std::printf("%d periods in %.3f s: %.0f periods/s; the process's CPU %.1f us a period\n", done_,
-                wall, done_ / wall, 1e6 * cpu / done_);
-    std::fflush(stdout);
-  }
-
-  void command() {
-    // (A shared message: the node's nodelet takes it without a copy or a wake of the poll thread.)
-    auto tilt = boost::make_shared<marble_maze::BoardTilt>();
-    tilt->roll = 0.05 * std::cos(done_ * 0.01);
-    tilt->pitch = 0.05 * std::sin(done_ * 0.01);
-    tilt_.publish(tilt);
-  }
-
-  static double processCpuSeconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-  }
-
-  ros::Publisher tilt_;
-  ros::Subscriber state_;
-  ros::WallTimer wait_;
-  ros::WallTime connected_, begin_;
-  ros::WallDuration settle_;
-  ros::Time last_;
-  double cpu_before_ = 0;
-  int periods_ = 0, done_ = 0;
+  std::unique_ptr<LockstepAgent> agent_;
 };
 
 }  // namespace marble_maze_examples

@@ -3,8 +3,9 @@
 # 55 Hz and the `fast` preset on a private master, PERIODS commands each answered by the state
 # after it. Prints the periods a second and the node's CPU a period, with only marble_state
 # listened to and with every output listened to; then the node's nodelet and the example agent's
-# (examples/lockstep_agent_nodelet.cpp) in one manager, and the CPU of that process a period;
-# and the physics of a period in process (marble_maze_bench's hand-written loop), all in the same
+# (examples/lockstep_agent_nodelet.cpp) in one manager, and the node and that agent on one thread
+# of one process (examples/lockstep_in_process.cpp), with the CPU of that process a period; and
+# the physics of a period in process (marble_maze_bench's hand-written loop), all in the same
 # run. BASELINE_WS, a workspace built from another commit, adds its node's figures to the run.
 set -euo pipefail
 # shellcheck source=scripts/workspace.sh
@@ -67,10 +68,37 @@ nodelets() {
   rm -f "$log"
 }
 
+# in_process: the node and the agent on one thread of one process (examples/lockstep_in_process.cpp),
+# on a master of their own, ten times the periods (they take under a tenth of a second).
+in_process() {
+  roscore -p 11398 >/dev/null 2>&1 &
+  local core=$!
+  sleep 3
+  rosparam set /agent/periods $((periods * 10))
+  local log
+  log=$(mktemp)
+  "$WS/devel/lib/marble_maze/lockstep_in_process" _lockstep:=0.01818181818181818 _preset:=fast \
+    >"$log" 2>&1 &
+  local both=$!
+  printf '%-40s ' "one process, one thread, node and agent:"
+  local waited=0
+  until grep -q 'periods/s' "$log" || [ $waited -ge 120 ]; do
+    sleep 1
+    waited=$((waited + 1))
+  done
+  grep 'periods/s' "$log" || echo "failed"
+  kill -INT "$both"
+  wait "$both" || true
+  kill "$core"
+  wait "$core" || true
+  rm -f "$log"
+}
+
 echo "ROS lockstep, 55 Hz, fast preset, $periods periods a case:"
 run "$WS" "this node, marble_state alone:"
 run "$WS" "this node, every output listened:" _listen_all:=true
 nodelets
+in_process
 if [ -n "${BASELINE_WS:-}" ]; then
   run "$BASELINE_WS" "baseline node, marble_state alone:"
   run "$BASELINE_WS" "baseline node, every output listened:" _listen_all:=true

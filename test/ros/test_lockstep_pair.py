@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""rostest of the example agent's nodelet in lockstep with the node's in one manager (run by
-lockstep_pair.test, control period 0.02 s, 2000 periods): the states
-answer exactly 2000 commands, one period apart, and stop."""
+"""rostest of the example agent in lockstep with the node in one process: their nodelets in one
+manager (lockstep_pair.test) or both on one thread (lockstep_in_process.test), control period
+0.02 s, 2000 periods. The states answer exactly 2000 commands, one period apart, and stop."""
 import threading
 import time
 import unittest
@@ -12,7 +12,7 @@ import rostest
 from marble_maze.msg import MarbleState
 
 PERIOD_NS = 20 * 10**6
-PERIODS = 2000  # as lockstep_nodelet.test sets the agent's ~periods
+PERIODS = 2000  # as both launch files set the agent's periods
 
 
 class LockstepPairTest(unittest.TestCase):

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <limits>
@@ -207,22 +208,29 @@ class VectorAgentEnv::Pool {
     }
     start_.notify_all();
     work(0, n / slices());
-    // (A call's work is some tens of microseconds: waking a sleeping thread can take as long, so
-    // each side spins a while before it sleeps.)
-    for (int spin = 0; pending_.load() != 0 && spin < kSpins; ++spin) std::this_thread::yield();
+    spinWhile([this] { return pending_.load() != 0; });
     std::unique_lock<std::mutex> lock(mutex_);
     done_.wait(lock, [this] { return pending_.load() == 0; });
   }
 
  private:
-  static constexpr int kSpins = 20000;
   int slices() const { return static_cast<int>(threads_.size()) + 1; }
+
+  /// A call's work is some tens of microseconds, and waking a sleeping thread can take as long:
+  /// so each side first watches `busy` for up to a millisecond, without yielding: a thread
+  /// that yields on a loaded machine gives its core away for a whole time slice, milliseconds,
+  /// each time, where one that sleeps is woken at once.
+  template <typename Busy>
+  static void spinWhile(const Busy& busy) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(1);
+    while (busy() && std::chrono::steady_clock::now() < until) {
+    }
+  }
 
   void serve(int slice) {
     std::uint64_t seen = 0;
     for (;;) {
-      for (int spin = 0; generation_.load() == seen && spin < kSpins; ++spin)
-        std::this_thread::yield();
+      spinWhile([&] { return generation_.load() == seen; });
       {
         std::unique_lock<std::mutex> lock(mutex_);
         start_.wait(lock, [&] { return generation_.load() != seen; });

@@ -25,9 +25,12 @@ demo: build
 	@bash scripts/demo.sh $(ARGS)
 
 # The step's cost (Google Benchmark), each case also as a ratio to free flight in the same run;
-# then ROS lockstep's periods a second (scripts/bench_lockstep.sh, about a minute).
+# then marble_maze.agents from Python against the C++ loop (bench/agents_bench.py, 20 s) and ROS
+# lockstep's periods a second (scripts/bench_lockstep.sh, about a minute).
 bench: build
 	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"
+	@. scripts/workspace.sh && use_workspace && \
+	  /usr/bin/python3 bench/agents_bench.py "$$WS/devel/lib/marble_maze/marble_maze_bench"
 	@bash scripts/bench_lockstep.sh
 
 # Instructions a step (callgrind), which no machine's speed or load moves: CASES is a regex of

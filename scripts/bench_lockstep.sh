@@ -15,13 +15,32 @@ use_workspace
 export ROS_MASTER_URI=http://localhost:11398
 periods=${PERIODS:-20000}
 
-# run WORKSPACE LABEL [agent args...]: one node, one agent, on a master of their own.
+# Each case on a master of its own.
+master_up() {
+  roscore -p 11398 >/dev/null 2>&1 &
+  core=$!
+  sleep 3
+}
+master_down() {
+  kill "$core"
+  wait "$core" || true
+}
+
+# figures LOG: the agent's line of figures in LOG, once it is there (within two minutes).
+figures() {
+  local waited=0
+  until grep -q 'periods/s' "$1" || [ $waited -ge 120 ]; do
+    sleep 1
+    waited=$((waited + 1))
+  done
+  grep 'periods/s' "$1" || echo "failed"
+}
+
+# run WORKSPACE LABEL [agent args...]: that workspace's node and this one's agent.
 run() {
   local ws=$1 label=$2
   shift 2
-  roscore -p 11398 >/dev/null 2>&1 &
-  local core=$!
-  sleep 3
+  master_up
   # (its own workspace's libraries first: this one's are on the path, and differ)
   LD_LIBRARY_PATH="$ws/devel/lib:$LD_LIBRARY_PATH" "$ws/devel/lib/marble_maze/marble_maze_node" \
     _lockstep:=0.01818181818181818 _preset:=fast >/dev/null 2>&1 &
@@ -31,16 +50,13 @@ run() {
     echo "failed"
   kill -INT "$node"
   wait "$node" || true
-  kill "$core"
-  wait "$core" || true
+  master_down
 }
 
 # nodelets: the node's nodelet and the agent's in one manager of one worker thread (the two take
-# turns: a second thread would only add hand-offs), on a master of their own.
+# turns: a second thread would only add hand-offs).
 nodelets() {
-  roscore -p 11398 >/dev/null 2>&1 &
-  local core=$!
-  sleep 3
+  master_up
   rosparam set /marble_maze/lockstep 0.01818181818181818
   rosparam set /marble_maze/preset fast
   rosparam set /agent/periods "$periods"
@@ -55,25 +71,17 @@ nodelets() {
     >/dev/null 2>&1 &
   local agent=$!
   printf '%-40s ' "nodelets, node and agent in one:"
-  local waited=0
-  until grep -q 'periods/s' "$log" || [ $waited -ge 120 ]; do
-    sleep 1
-    waited=$((waited + 1))
-  done
-  grep 'periods/s' "$log" || echo "failed"
+  figures "$log"
   kill -INT "$node" "$agent" "$manager"
   wait "$node" "$agent" "$manager" || true
-  kill "$core"
-  wait "$core" || true
+  master_down
   rm -f "$log"
 }
 
 # in_process: the node and the agent on one thread of one process (examples/lockstep_in_process.cpp),
-# on a master of their own, ten times the periods (they take under a tenth of a second).
+# ten times the periods (they take under a tenth of a second).
 in_process() {
-  roscore -p 11398 >/dev/null 2>&1 &
-  local core=$!
-  sleep 3
+  master_up
   rosparam set /agent/periods $((periods * 10))
   local log
   log=$(mktemp)
@@ -81,16 +89,10 @@ in_process() {
     >"$log" 2>&1 &
   local both=$!
   printf '%-40s ' "one process, one thread, node and agent:"
-  local waited=0
-  until grep -q 'periods/s' "$log" || [ $waited -ge 120 ]; do
-    sleep 1
-    waited=$((waited + 1))
-  done
-  grep 'periods/s' "$log" || echo "failed"
+  figures "$log"
   kill -INT "$both"
   wait "$both" || true
-  kill "$core"
-  wait "$core" || true
+  master_down
   rm -f "$log"
 }
 

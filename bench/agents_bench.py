@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Control steps a second of marble_maze.agents.VectorMazeEnv from Python (random actions, the
+classic maze at `fast`, 55 Hz), with 1, 8 and 64 environments on 1 and 2 threads, against the
+hand-written C++ loop on one Session (marble_maze_bench's BM_AgentControlStep/envs:0) timed in
+the same run. Each case is the best of three spells of wall time. `make bench` runs it.
+
+usage: agents_bench.py MARBLE_MAZE_BENCH [--seconds S]
+"""
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import marble_maze.agents as agents
+
+CASES = [(1, 1), (8, 1), (64, 1), (64, 2)]  # (environments, threads)
+
+
+def python_rate(num_envs, num_threads, seconds):
+    """The best of three spells of `seconds`: control steps (environments x calls) a second."""
+    envs = agents.VectorMazeEnv(num_envs, num_threads=num_threads, seed=0)
+    envs.reset(seed=1)
+    actions = np.random.default_rng(0).uniform(-1, 1, (64, num_envs, 2))
+    best = 0.0
+    for _ in range(3):
+        calls, begin = 0, time.perf_counter()
+        while time.perf_counter() - begin < seconds:
+            envs.step(actions[calls % len(actions)])
+            calls += 1
+        best = max(best, calls * num_envs / (time.perf_counter() - begin))
+    return best
+
+
+def cpp_loop_rate(bench):
+    """The hand-written C++ loop's control steps a second, as marble_maze_bench times it."""
+    with tempfile.NamedTemporaryFile(suffix=".json") as out:
+        subprocess.run([bench, "--benchmark_filter=BM_AgentControlStep/envs:0/",
+                        "--benchmark_repetitions=3", "--benchmark_out=" + out.name,
+                        "--benchmark_out_format=json"], check=True, stdout=subprocess.DEVNULL)
+        runs = json.load(out)["benchmarks"]
+    seconds = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+    return 1 / min(r["real_time"] * seconds[r["time_unit"]] for r in runs
+                   if r.get("run_type") == "iteration")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("bench", help="the marble_maze_bench executable")
+    parser.add_argument("--seconds", type=float, default=1.0, help="a spell's wall time")
+    args = parser.parse_args()
+    loop = cpp_loop_rate(args.bench)
+    print("marble_maze.agents from Python, random actions, fast, 55 Hz (best of 3 x %g s):"
+          % args.seconds)
+    print("%-44s %12.0f control steps/s  1.00" % ("the hand-written C++ loop (one Session):", loop))
+    one_thread = {}
+    for num_envs, num_threads in CASES:
+        rate = python_rate(num_envs, num_threads, args.seconds)
+        label = "VectorMazeEnv(%d), %d thread%s:" % (
+            num_envs, num_threads, "s" if num_threads > 1 else "")
+        line = "%-44s %12.0f control steps/s  %.2f" % (label, rate, rate / loop)
+        if num_threads == 1:
+            one_thread[num_envs] = rate
+        else:
+            line += " (%.2f times one thread)" % (rate / one_thread[num_envs])
+        print(line)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Control steps a second of marble_maze.agents.VectorMazeEnv from Python (random actions, the
 classic maze at `fast`, 55 Hz), with 1, 8 and 64 environments on 1 and 2 threads, against the
 hand-written C++ loop on one Session (marble_maze_bench's BM_AgentControlStep/envs:0) timed in

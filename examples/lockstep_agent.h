@@ -1,7 +1,8 @@
 // A roscpp agent in lockstep, as a class any process can hold: beside a node started with
-// ~lockstep, it waits ~settle seconds (default 0.5) once the two see each other, sends ~periods
-// tilt commands (a circling tilt), each as the state answering the one before arrives, then
-// prints the periods a second of wall time and the CPU its process spent a period, and stops.
+// ~lockstep, it waits `settle` seconds (default 0.5) once the two see each other, sends `periods`
+// tilt commands (a circling tilt; default 5000), each as the state answering the one before
+// arrives, then prints the periods a second of wall time and the CPU its process spent a period,
+// and stops. It reads `settle` and `periods` under the handle it is given for them.
 // The agent's nodelet (lockstep_agent_nodelet.cpp) and the node and agent in one process on one
 // thread (lockstep_in_process.cpp) hold one each.
 #pragma once
@@ -20,9 +21,9 @@ namespace marble_maze_examples {
 
 class LockstepAgent {
  public:
-  /// Topics under `nh`, its settings under `pnh`.
-  LockstepAgent(ros::NodeHandle nh, const ros::NodeHandle& pnh)
-      : periods_(pnh.param("periods", 5000)), settle_(pnh.param("settle", 0.5)) {
+  /// Topics under `nh`, `periods` and `settle` under `settings`.
+  LockstepAgent(ros::NodeHandle nh, const ros::NodeHandle& settings)
+      : periods_(settings.param("periods", 5000)), settle_(settings.param("settle", 0.5)) {
     tilt_ = nh.advertise<marble_maze::BoardTilt>("tilt", 10);
     state_ = nh.subscribe("marble_state", 10, &LockstepAgent::answered, this);
     wait_ = nh.createWallTimer(ros::WallDuration(0.01), &LockstepAgent::start, this);

@@ -39,7 +39,8 @@ def cpp_loop_rate(bench):
     with tempfile.NamedTemporaryFile(suffix=".json") as out:
         subprocess.run([bench, "--benchmark_filter=BM_AgentControlStep/envs:0/",
                         "--benchmark_repetitions=3", "--benchmark_out=" + out.name,
-                        "--benchmark_out_format=json"], check=True, stdout=subprocess.DEVNULL)
+                        "--benchmark_out_format=json"], check=True, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL)
         runs = json.load(out)["benchmarks"]
     seconds = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
     return 1 / min(r["real_time"] * seconds[r["time_unit"]] for r in runs

@@ -4,10 +4,12 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "bench_mazes.h"
 #include "marble_maze/agent_env.h"
 #include "marble_maze/csv.h"
+#include "marble_maze/exact_text.h"
 #include "marble_maze/simulation.h"
 
 namespace mm = marble_maze;
@@ -217,6 +220,30 @@ void BM_StepWithCsvRow(benchmark::State& state) {
   runSteps(state, &sim, 0, state.range(0) ? &rows : nullptr);
 }
 BENCHMARK(BM_StepWithCsvRow)->Apply(fixedSteps)->ArgName("row")->Arg(0)->Arg(1);
+
+/// One number of that row in its shortest exact form, over numbers of a simulation's scales
+/// (1e-4 to 10, either sign): std::to_chars's shortest scientific form, the standard library's
+/// one call, then writeExact, the CSV's form (Dragonbox's digits laid out as %g lays them out).
+/// The second's ratio in its group is writeExact's cost against std::to_chars's.
+void BM_NumberText(benchmark::State& state) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<double> numbers(4096);
+  for (double& v : numbers) v = unit(random) * std::pow(10.0, static_cast<int>(random() % 6) - 4);
+  const bool exact = state.range(0);
+  state.SetLabel(exact ? "writeExact" : "std::to_chars");
+  char text[mm::kExactTextSize];
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const double v = numbers[k++ % numbers.size()];
+    char* end = exact
+                    ? mm::writeExact(text, v)
+                    : std::to_chars(text, text + sizeof text, v, std::chars_format::scientific).ptr;
+    benchmark::DoNotOptimize(end);
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_NumberText)->Apply(fixedSteps)->ArgName("exact")->Arg(0)->Arg(1);
 
 /// Learning agents: a control step (1/55 s of the classic maze at the `fast` preset) under random
 /// actions, per environment. envs:0 is the in-process loop an author writes by hand on one

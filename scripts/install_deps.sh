@@ -16,7 +16,7 @@ packages=("$@")
   python3-dynamic-reconfigure python3-nav-msgs python3-diagnostic-msgs python3-yaml
   rosbash rviz valgrind python3-matplotlib clang libclang-rt-14-dev
   clang-tidy flake8 shellcheck pybind11-dev python3-pybind11 python3-numpy libcli11-dev
-  python3-torch
+  libdragonbox-dev python3-torch
 )
 
 missing=()

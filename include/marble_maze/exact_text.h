@@ -8,7 +8,7 @@
 namespace marble_maze {
 
 /// Room enough for any double in the form below (at most 24 characters), and for the copies of a
-/// fixed 16 bytes that lay it out, which may write past its end.
+/// fixed 24 bytes that lay it out, which may write past its end.
 constexpr std::size_t kExactTextSize = 48;
 
 /// Writes `value` at `first` in the shortest form that reads back exactly, laid out as printf's

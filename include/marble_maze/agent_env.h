@@ -148,7 +148,7 @@ class VectorAgentEnv {
 
  private:
   class Pool;
-  /// Runs `work(first, last)` over the environments, split among the threads.
+  /// Runs `work(first, last)` over ranges that cover the environments, spread over the threads.
   void forEachSlice(const std::function<void(int, int)>& work);
 
   std::vector<std::unique_ptr<AgentEnv>> envs_;

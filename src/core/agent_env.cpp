@@ -181,11 +181,15 @@ void AgentEnv::observe(float* out) const {
   for (int k = 0; k < kObservationSize; ++k) out[k] = static_cast<float>(values[k]);
 }
 
-/// Threads that each run their slice of the environments when asked, and wait in between: a
-/// step of many environments costs no thread's start.
+/// The threads beside the caller's, which wait between calls: a step of many environments costs
+/// no thread's start. Each thread steps the environments of its own slice one at
+/// a time, and then takes what is left of the others': a period costs some environments several
+/// times what it costs others (a run of collisions), and with fixed slices every thread would
+/// wait for the one that drew them. An environment mostly stays with one thread, and so in its
+/// core's cache.
 class VectorAgentEnv::Pool {
  public:
-  explicit Pool(int helpers) {
+  explicit Pool(int helpers) : slices_(static_cast<std::size_t>(helpers) + 1) {
     for (int t = 1; t <= helpers; ++t) threads_.emplace_back([this, t] { serve(t); });
   }
   ~Pool() {
@@ -197,24 +201,36 @@ class VectorAgentEnv::Pool {
     start_.notify_all();
     for (std::thread& t : threads_) t.join();
   }
-  /// `work(first, last)` over n environments in as many slices as threads, the caller's first.
+  /// `work(i, i + 1)` for every i below n, spread over the threads, the caller's among them.
   void run(int n, const std::function<void(int, int)>& work) {
     work_ = &work;
     n_ = n;
+    for (int s = 0; s < slices(); ++s) slices_[static_cast<std::size_t>(s)].next.store(begin(s));
     pending_.store(static_cast<int>(threads_.size()));
     {
       std::lock_guard<std::mutex> lock(mutex_);
       generation_.fetch_add(1);
     }
     start_.notify_all();
-    work(0, n / slices());
+    take(0);
     spinWhile([this] { return pending_.load() != 0; });
     std::unique_lock<std::mutex> lock(mutex_);
     done_.wait(lock, [this] { return pending_.load() == 0; });
   }
 
  private:
-  int slices() const { return static_cast<int>(threads_.size()) + 1; }
+  int slices() const { return static_cast<int>(slices_.size()); }
+  int begin(int slice) const { return n_ * slice / slices(); }
+
+  /// Steps the environments left in the thread's own slice, then in each of the others.
+  void take(int own) {
+    for (int k = 0; k < slices(); ++k) {
+      const int s = (own + k) % slices();
+      std::atomic<int>& next = slices_[static_cast<std::size_t>(s)].next;
+      const int end = begin(s + 1);
+      for (int i = next.fetch_add(1); i < end; i = next.fetch_add(1)) (*work_)(i, i + 1);
+    }
+  }
 
   /// A call's work is some tens of microseconds, and waking a sleeping thread can take as long:
   /// so each side first watches `busy` for up to a millisecond, without yielding: a thread
@@ -237,8 +253,7 @@ class VectorAgentEnv::Pool {
         if (stop_) return;
         seen = generation_.load();
       }
-      const int n = n_;
-      (*work_)(n * slice / slices(), n * (slice + 1) / slices());
+      take(slice);
       if (pending_.fetch_sub(1) == 1) {
         std::lock_guard<std::mutex> lock(mutex_);
         done_.notify_one();
@@ -246,6 +261,12 @@ class VectorAgentEnv::Pool {
     }
   }
 
+  /// The next environment of a slice to be taken, on a cache line of its own.
+  struct alignas(64) Slice {
+    std::atomic<int> next{0};
+  };
+
+  std::vector<Slice> slices_;
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable start_, done_;

@@ -1,12 +1,15 @@
 """Control steps a second of marble_maze.agents.VectorMazeEnv from Python (random actions, the
 classic maze at `fast`, 55 Hz), with 1, 8 and 64 environments on 1 and 2 threads, against the
 hand-written C++ loop on one Session (marble_maze_bench's BM_AgentControlStep/envs:0) timed in
-the same run. Each case is the best of three spells of wall time. `make bench` runs it.
+the same run. Each case is the best of three spells of wall time. Last, two processes at once,
+each VectorMazeEnv(64) on one thread: what the machine's two cores give together, the most that
+two threads could gain. `make bench` runs it.
 
 usage: agents_bench.py MARBLE_MAZE_BENCH [--seconds S]
 """
 import argparse
 import json
+import multiprocessing
 import subprocess
 import sys
 import tempfile
@@ -32,6 +35,16 @@ def python_rate(num_envs, num_threads, seconds):
             calls += 1
         best = max(best, calls * num_envs / (time.perf_counter() - begin))
     return best
+
+
+def _one_thread_of_64(seconds):
+    return python_rate(64, 1, seconds)
+
+
+def two_processes_rate(seconds):
+    """Control steps a second of two processes at once, each VectorMazeEnv(64) on one thread."""
+    with multiprocessing.get_context("fork").Pool(2) as pool:
+        return sum(pool.map(_one_thread_of_64, [seconds, seconds]))
 
 
 def cpp_loop_rate(bench):
@@ -67,6 +80,9 @@ def main():
         else:
             line += " (%.2f times one thread)" % (rate / one_thread[num_envs])
         print(line)
+    both = two_processes_rate(args.seconds)
+    print("%-44s %12.0f control steps/s  %.2f (%.2f times one thread: the two cores' most)"
+          % ("two processes at once, 1 thread each:", both, both / loop, both / one_thread[64]))
     return 0
 
 

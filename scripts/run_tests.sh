@@ -3,9 +3,9 @@
 # and the fuzzers for a few seconds each; ends with one line "N passed, N failed" and exits
 # non-zero when any failed or none ran. (make check runs the long ones: scripts/check.sh.)
 #
-# The sanitized build and its tests run beside catkin's tests at the idle scheduling class
-# (chrt --idle): they take only the CPU the others leave, most of it while the rostests wait on
-# their nodes, so they neither slow those down nor wait for them.
+# The sanitized build, its tests and the fuzzers run beside catkin's tests at the idle scheduling
+# class (chrt --idle): they take only the CPU the others leave, most of it while the rostests
+# wait on their nodes, so they neither slow those down nor wait for them.
 set -uo pipefail
 export PATH="/usr/bin:$PATH"
 # shellcheck source=scripts/workspace.sh
@@ -15,11 +15,12 @@ sanitized_results=$WS/sanitize/results  # (catkin's run_tests empties $results a
 rm -rf "$results" "$sanitized_results"
 mkdir -p "$WS/sanitize"
 failed=()
-echo "the core's tests under the sanitizers, beside the others (logs: $WS/sanitize)"
-sanitized_tests() {  # in the background: the idle class, which the builds and tests inherit
+echo "the core's tests under the sanitizers and the fuzzers, 10 s each, beside the others" \
+  "(logs: $WS/sanitize)"
+sanitized_tests() {  # in the background: the idle class, which the builds and runs inherit
   chrt --idle -p 0 "$BASHPID" > /dev/null
   bash "$repo/scripts/sanitize.sh" quick "$sanitized_results" || return 1
-  bash "$repo/scripts/sanitized_build.sh" maze_fuzzer args_fuzzer snapshot_fuzzer || return 2
+  bash "$repo/scripts/fuzz.sh" 10 "$sanitized_results" || return 2
 }
 sanitized_tests > "$WS/sanitize/run_tests.out" 2>&1 &
 sanitized=$!
@@ -40,11 +41,6 @@ if [ $status -eq 1 ]; then
   echo "the sanitized core tests failed (logs in $WS/sanitize)"
   failed+=(--also-failed "sanitized core tests")
 elif [ $status -ne 0 ]; then
-  echo "the fuzzers failed to build (log: $WS/sanitize/build.log)"
-  failed+=(--also-failed "fuzzers' build")
-fi
-echo "the fuzzers, 10 s each"
-if ! bash "$repo/scripts/fuzz.sh" 10 "$results/marble_maze"; then
   echo "the fuzzers found something or failed to build (logs in $WS/sanitize)"
   failed+=(--also-failed "fuzzers")
 fi

@@ -108,6 +108,7 @@ ros::Time FollowRosTime::stateStamp() const {
 void FollowRosTime::fillHealth(HealthFigures* f) const {
   f->aimed_factor = 1;
   f->follows_ros_time = true;
+  f->aimed_means = "ROS time's own";
   f->skipped_steps = skipped_steps_;
   if (c_.clock->anchored()) f->ahead = std::max(0.0, (stampNow() - ros::Time::now()).toSec());
 }

@@ -42,7 +42,7 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
   else if (skipped > 0)
     status.summaryf(Level::WARN, "fell behind: skipped %llu steps to catch up",
                     static_cast<unsigned long long>(skipped));
-  else if (!stood && !now_.lockstep && aimed > 0 && factor < 0.9 * aimed)
+  else if (!stood && aimed > 0 && factor < 0.9 * aimed)
     status.summaryf(Level::WARN, "running at %.2f times real time, below the %.2f aimed at", factor,
                     aimed);
   else if (now_.lost > before_.lost)
@@ -58,15 +58,10 @@ void Health::report(diagnostic_updater::DiagnosticStatusWrapper& status) {
                     "%.3g s ahead of ROS time (steps taken while paused): waiting for it to "
                     "catch up",
                     now_.ahead);
-  else if (now_.lockstep)
-    status.summary(Level::OK, "running in lockstep: each tilt command advances one period");
   else
-    status.summary(Level::OK, "running");
+    status.summary(Level::OK, now_.running);
   status.add("real-time factor", factor);
-  status.add(now_.lockstep           ? "real-time factor aimed at (lockstep: none, the commands')"
-             : now_.follows_ros_time ? "real-time factor aimed at (ROS time's own)"
-                                     : "real-time factor aimed at (0: as fast as it can)",
-             aimed);
+  status.add("real-time factor aimed at (" + now_.aimed_means + ")", aimed);
   status.add("steps skipped to catch up (last period)", skipped);
   status.add("tilt commands per second", command_rate);
   // (Of ROS time: in lockstep it stands while no command comes, and on the node's own clock

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 
 namespace marble_maze_ros {
 
@@ -28,7 +29,10 @@ struct HealthFigures {
   std::size_t queued = 0;           ///< commands waiting for their step
   double queued_ahead = 0;          ///< s of simulated time until the last of them acts
   bool paused = false;
-  bool lockstep = false;
+  /// How the time policy paces the simulation, in the report's words: the summary while all is
+  /// well, and what the factor aimed at is.
+  std::string running = "running";
+  std::string aimed_means = "0: as fast as it can";
   /// s the simulation stands ahead of ROS time (steps taken while paused), waiting for it; 0
   /// when it is not ahead.
   double ahead = 0;

@@ -36,7 +36,8 @@ void Lockstep::refused() {
 
 void Lockstep::fillHealth(HealthFigures* f) const {
   f->aimed_factor = 0;
-  f->lockstep = true;
+  f->running = "running in lockstep: each tilt command advances one period";
+  f->aimed_means = "lockstep: none, the commands'";
 }
 
 }  // namespace marble_maze_ros

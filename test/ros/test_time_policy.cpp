@@ -177,7 +177,8 @@ TEST(Lockstep, A55HzPeriodIsHonouredExactly) {
   EXPECT_NEAR(node.session.simulation().time(), 1.0, 1e-12);
   HealthFigures f;
   policy.fillHealth(&f);
-  EXPECT_TRUE(f.lockstep);
+  EXPECT_EQ(f.running, "running in lockstep: each tilt command advances one period");
+  EXPECT_EQ(f.aimed_factor, 0);  // no rate to fall behind
   EXPECT_FALSE(f.follows_ros_time);
 }
 

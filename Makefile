@@ -13,7 +13,7 @@ build: deps
 
 # Every test: gtest, rostest, the core under the sanitizers, the fuzzers briefly (about 5 minutes
 # on a built tree); ends with "N passed, N failed".
-test: build
+test: deps
 	@bash scripts/run_tests.sh
 
 # The long runs: the soak, the sanitizers over the ROS layer too, the fuzzers for FUZZ_SECONDS

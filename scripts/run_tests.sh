@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# make test: every gtest, unittest and rostest case, the core's tests again under the sanitizers,
-# and the fuzzers for a few seconds each; ends with one line "N passed, N failed" and exits
-# non-zero when any failed or none ran. (make check runs the long ones: scripts/check.sh.)
+# make test: builds the workspace, then runs every gtest, unittest and rostest case, the core's
+# tests again under the sanitizers, and the fuzzers for a few seconds each; ends with one line
+# "N passed, N failed" and exits non-zero when any failed or none ran. (make check runs the long
+# ones: scripts/check.sh.)
 #
-# The sanitized build, its tests and the fuzzers run beside catkin's tests at the idle scheduling
-# class (chrt --idle): they take only the CPU the others leave, most of it while the rostests
-# wait on their nodes, so they neither slow those down nor wait for them.
+# The sanitized build, its tests and the fuzzers run beside catkin's build and tests at the idle
+# scheduling class (chrt --idle): they take only the CPU the others leave, while the build links
+# or the rostests wait on their nodes, so they neither slow those down nor wait for them.
 set -uo pipefail
 export PATH="/usr/bin:$PATH"
 # shellcheck source=scripts/workspace.sh
@@ -22,8 +23,12 @@ sanitized_tests() {  # in the background: the idle class, which the builds and r
   bash "$repo/scripts/sanitize.sh" quick "$sanitized_results" || return 1
   bash "$repo/scripts/fuzz.sh" 10 "$sanitized_results" || return 2
 }
+set -m  # (the job in a process group of its own, stopped whole if this script ends first)
 sanitized_tests > "$WS/sanitize/run_tests.out" 2>&1 &
 sanitized=$!
+set +m
+trap 'kill -- -"$sanitized" 2> /dev/null' EXIT
+bash "$repo/scripts/build.sh" || exit 1
 echo "gtest, unittest and rostest (about 5 minutes; log: $WS/run_tests.log)"
 (cd "$WS" && catkin_make run_tests -j2) > "$WS/run_tests.log" 2>&1
 status=$?

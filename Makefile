@@ -11,7 +11,7 @@ deps:
 build: deps
 	@bash scripts/build.sh
 
-# Every test: gtest, rostest, the core under the sanitizers, the fuzzers briefly (about 5 minutes
+# Every test: gtest, rostest, the core under the sanitizers, the fuzzers briefly (about 4 minutes
 # on a built tree); ends with "N passed, N failed".
 test: deps
 	@bash scripts/run_tests.sh

@@ -4,7 +4,7 @@
 # quick (make test): the core's tests, a shorter soak, and without the four that take most of
 # the time under the sanitizers (make test runs them unsanitized). full (make check): every core
 # test, the runner with its command-line tests and the ROS layer's unit tests.
-# Writes a JUnit file a binary into RESULTS_DIR and exits non-zero on a build failure, a failed
+# Writes a JUnit file a shard into RESULTS_DIR and exits non-zero on a build failure, a failed
 # test or a sanitizer's finding.
 set -uo pipefail
 export PATH="/usr/bin:$PATH"

@@ -182,11 +182,10 @@ void AgentEnv::observe(float* out) const {
 }
 
 /// The threads beside the caller's, which wait between calls: a step of many environments costs
-/// no thread's start. Each thread steps the environments of its own slice one at
-/// a time, and then takes what is left of the others': a period costs some environments several
-/// times what it costs others (a run of collisions), and with fixed slices every thread would
-/// wait for the one that drew them. An environment mostly stays with one thread, and so in its
-/// core's cache.
+/// no thread's start. Each thread steps the environments of its own slice one at a time, and
+/// then takes what is left of the others': a period costs some environments several times what
+/// it costs others, and with fixed slices every thread would wait for the one that drew them. An
+/// environment mostly stays with one thread, and so in its core's cache.
 class VectorAgentEnv::Pool {
  public:
   explicit Pool(int helpers) : slices_(static_cast<std::size_t>(helpers) + 1) {

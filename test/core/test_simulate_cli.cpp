@@ -42,8 +42,11 @@ std::string readFile(const std::string& path) {
   return text.str();
 }
 
+/// A scratch file of the running test's own: tests run side by side (gtest's shards) never share
+/// one.
 std::string tempPath(const std::string& name) {
-  return (testing::TempDir() + "/marble_maze_" + name);
+  return testing::TempDir() + "/marble_maze_" +
+         testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + name;
 }
 
 TEST(SimulateCli, TwoRunsWriteByteIdenticalTrajectories) {

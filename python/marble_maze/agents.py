@@ -142,9 +142,13 @@ class VectorMazeEnv(_VectorEnvBase):
             np.asarray(actions, dtype=np.float64).reshape(self.num_envs, ACTION_SIZE))
         info = {}
         done = terminated | truncated
-        if done.any():
-            info["final_observation"] = np.array([final[i] if d else None
-                                                  for i, d in enumerate(done)], dtype=object)
+        ended = np.flatnonzero(done)
+        if ended.size:
+            # (Gymnasium's layout: an object array, None where the episode goes on.)
+            final_observation = np.empty(self.num_envs, dtype=object)
+            for i in ended:
+                final_observation[i] = final[i]
+            info["final_observation"] = final_observation
             info["_final_observation"] = done
         return obs, reward, terminated, truncated, info
 

@@ -85,6 +85,21 @@ class AgentsTest(unittest.TestCase):
         self.assertGreater(float(final[0]), float(start[0, 0]) + 0.01)  # over the hole
         np.testing.assert_array_equal(obs, start)  # the new episode's first observation
 
+    def test_the_final_observation_is_only_where_an_episode_ended(self):
+        envs = agents.VectorMazeEnv(3, maze=HOLE_BESIDE)
+        envs.reset()
+        for period in range(200):  # the first into the hole, the others level
+            obs, _, terminated, _, info = envs.step(np.array([[0, 1], [0, 0], [0, 0]]))
+            if terminated.any():
+                break
+        np.testing.assert_array_equal(terminated, [True, False, False])
+        np.testing.assert_array_equal(info["_final_observation"], [True, False, False])
+        final = info["final_observation"]
+        self.assertEqual(final.dtype, object)
+        self.assertEqual(final[0].shape, (agents.OBSERVATION_SIZE,))
+        self.assertIsNone(final[1])
+        self.assertIsNone(final[2])
+
     def test_an_episode_is_truncated_at_its_time_limit(self):
         envs = agents.VectorMazeEnv(1, max_episode_seconds=0.2)
         envs.reset()

@@ -18,6 +18,7 @@
 #include "marble_maze/agent_env.h"
 #include "marble_maze/csv.h"
 #include "marble_maze/exact_text.h"
+#include "marble_maze/sensors.h"
 #include "marble_maze/simulation.h"
 
 namespace mm = marble_maze;
@@ -245,28 +246,45 @@ void BM_NumberText(benchmark::State& state) {
 }
 BENCHMARK(BM_NumberText)->Apply(fixedSteps)->ArgName("exact")->Arg(0)->Arg(1);
 
+/// Random actions in [-1, 1] for `count` environments, each from a stream of its own: the
+/// environment numbered `first + i` draws the same actions however the environments are batched,
+/// so that every case below plays the same games.
+class RandomActions {
+ public:
+  RandomActions(int first, int count) {
+    for (int i = 0; i < count; ++i) streams_.push_back(mm::splitMix64(first + i));
+  }
+  /// The next action of each environment: count x kActionSize values.
+  void draw(double* out) {
+    for (std::uint64_t& stream : streams_)
+      for (int k = 0; k < mm::AgentEnv::kActionSize; ++k) *out++ = 2 * mm::uniformDraw(&stream) - 1;
+  }
+
+ private:
+  std::vector<std::uint64_t> streams_;
+};
+
 /// Learning agents: a control step (1/55 s of the classic maze at the `fast` preset) under random
 /// actions, per environment. envs:0 is the in-process loop an author writes by hand on one
 /// Session (a command, a period's steps, nothing observed); the others are VectorAgentEnv's
 /// step of that many environments on that many threads, observations and rewards included.
-/// The ratio in the group is a control step's cost against the hand-written loop's.
+/// The last runs two benchmark threads at once, each a VectorAgentEnv(32) of its own on one
+/// thread, the first and the second half of the 64: the two cores' rate with nothing shared and
+/// no call waiting for the other core, the most a VectorAgentEnv(64) on two threads could reach
+/// on the machine as it is in this run. The ratio in the group is a control step's cost against
+/// the hand-written loop's.
 void BM_AgentControlStep(benchmark::State& state) {
   const int envs = static_cast<int>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   mm::AgentEnvOptions options;
-  std::vector<double> actions(std::size_t{4096} * mm::AgentEnv::kActionSize);
-  std::uint64_t random = 12345;
-  for (double& a : actions) {  // (a fixed sequence: the same actions in every run)
-    random = random * 6364136223846793005ull + 1442695040888963407ull;
-    a = static_cast<double>(random >> 11) * 0x1p-52 - 1.0;
-  }
-  std::size_t k = 0;
+  RandomActions random(state.thread_index() * envs, std::max(envs, 1));
   if (envs == 0) {
     const mm::Scene scene = mm::agentScene(options);
     mm::Session session(scene);
     const auto steps = static_cast<std::uint64_t>(std::llround(1 / 55.0 / scene.params.step));
+    double a[mm::AgentEnv::kActionSize];
     for (auto _ : state) {
-      const double* a = &actions[(k++ % 4096) * 2];
+      random.draw(a);
       session.command({session.steps(), mm::TiltCommand::Kind::Angles,
                        a[0] * scene.params.tilt_limit, a[1] * scene.params.tilt_limit});
       session.run(steps);
@@ -275,6 +293,7 @@ void BM_AgentControlStep(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations());
     return;
   }
+  if (state.threads() > 1) state.SetLabel("apart: the cores' most");
   mm::VectorAgentEnv vector(envs, options, threads);
   const std::size_t n = static_cast<std::size_t>(envs);
   std::vector<float> obs(n * mm::AgentEnv::kObservationSize), final_obs(obs.size());
@@ -282,7 +301,7 @@ void BM_AgentControlStep(benchmark::State& state) {
   std::vector<std::uint8_t> terminated(n), truncated(n);
   vector.reset(obs.data());
   for (auto _ : state) {
-    for (double& a : batch) a = actions[k++ % actions.size()];
+    random.draw(batch.data());
     vector.step(batch.data(), obs.data(), rewards.data(), terminated.data(), truncated.data(),
                 final_obs.data());
   }
@@ -295,6 +314,11 @@ BENCHMARK(BM_AgentControlStep)
     ->Args({8, 1})
     ->Args({64, 1})
     ->Args({64, 2})
+    ->UseRealTime();
+BENCHMARK(BM_AgentControlStep)
+    ->ArgNames({"envs", "threads"})
+    ->Args({32, 1})
+    ->Threads(2)
     ->UseRealTime();
 
 /// Prints the usual table, then each case as a ratio to the first case of its group.

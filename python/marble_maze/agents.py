@@ -138,18 +138,16 @@ class VectorMazeEnv(_VectorEnvBase):
         return self._env.reset(seed), {}
 
     def step(self, actions):
-        obs, reward, terminated, truncated, final = self._env.step(
+        obs, reward, terminated, truncated, final, ended = self._env.step(
             np.asarray(actions, dtype=np.float64).reshape(self.num_envs, ACTION_SIZE))
         info = {}
-        done = terminated | truncated
-        ended = np.flatnonzero(done)
-        if ended.size:
+        if ended:
             # (Gymnasium's layout: an object array, None where the episode goes on.)
             final_observation = np.empty(self.num_envs, dtype=object)
             for i in ended:
                 final_observation[i] = final[i]
             info["final_observation"] = final_observation
-            info["_final_observation"] = done
+            info["_final_observation"] = terminated | truncated
         return obs, reward, terminated, truncated, info
 
     def images(self, pixel=0.002):
@@ -190,11 +188,10 @@ class MazeEnv(_EnvBase):
         return self._env.reset(seed)[0], {}
 
     def step(self, action):
-        obs, reward, terminated, truncated, final = self._env.step(
+        obs, reward, terminated, truncated, final, ended = self._env.step(
             np.asarray(action, dtype=np.float64).reshape(1, ACTION_SIZE))
-        done = bool(terminated[0] or truncated[0])
         # (Gymnasium's Env is reset by its caller: the episode's last observation is returned.)
-        return (final[0] if done else obs[0]), float(reward[0]), bool(terminated[0]), \
+        return (final[0] if ended else obs[0]), float(reward[0]), bool(terminated[0]), \
             bool(truncated[0]), {}
 
     def images(self, pixel=0.002):

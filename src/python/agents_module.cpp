@@ -50,7 +50,12 @@ class VectorEnv {
                 reinterpret_cast<std::uint8_t*>(truncated.mutable_data()),
                 final_obs.mutable_data());
     }
-    return py::make_tuple(obs, rewards, terminated, truncated, final_obs);
+    // (The environments whose episode ended, listed here: finding them in numpy costs a
+    // call of one environment as much as its physics.)
+    py::list ended;
+    for (int i = 0; i < n; ++i)
+      if (terminated.data()[i] || truncated.data()[i]) ended.append(i);
+    return py::make_tuple(obs, rewards, terminated, truncated, final_obs, ended);
   }
 
   /// The environments' pictures, uint8 [N, channels, height, width], at `pixel` metres.

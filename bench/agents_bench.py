@@ -1,15 +1,22 @@
 """Control steps a second of marble_maze.agents.VectorMazeEnv from Python (random actions, the
 classic maze at `fast`, 55 Hz), with 1, 8 and 64 environments on 1 and 2 threads, against the
 hand-written C++ loop on one Session (marble_maze_bench's BM_AgentControlStep/envs:0) timed in
-the same run. Each case is the best of three spells of wall time. Last, two processes at once,
-each VectorMazeEnv(64) on one thread: what the machine's two cores give together, the most that
-two threads could gain. `make bench` runs it.
+the same run. Each case is the best of three spells of wall time.
 
-usage: agents_bench.py MARBLE_MAZE_BENCH [--seconds S]
+Then what two threads gain, in turns of short spells so that every figure of a round meets the
+same machine: VectorMazeEnv(64) on one thread pinned to each of the first two cores, then on two
+threads, then two processes at once, each VectorMazeEnv(64) on one thread (the most two threads
+could give). One thread's rate is the mean over the two cores: on a virtual machine one core can
+run a third slower than the other for minutes, and a thread left to the scheduler would measure
+whichever it landed on. `make bench` runs it.
+
+usage: agents_bench.py MARBLE_MAZE_BENCH [--seconds S] [--rounds N] [--spell S]
 """
 import argparse
 import json
 import multiprocessing
+import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -22,31 +29,32 @@ import marble_maze.agents as agents
 CASES = [(1, 1), (8, 1), (64, 1), (64, 2)]  # (environments, threads)
 
 
-def python_rate(num_envs, num_threads, seconds):
-    """The best of three spells of `seconds`: control steps (environments x calls) a second."""
-    envs = agents.VectorMazeEnv(num_envs, num_threads=num_threads, seed=0)
-    envs.reset(seed=1)
-    # (Drawn ahead, 1,024 periods of them, 19 s of play: the table's cycle is longer than most
-    # episodes, so the games are as random as fresh draws, whose cost is not the module's.)
-    actions = np.random.default_rng(0).uniform(-1, 1, (1024, num_envs, 2))
-    best = 0.0
-    for _ in range(3):
+class Player:
+    """A VectorMazeEnv under random actions, played in spells of wall time."""
+
+    def __init__(self, num_envs, num_threads):
+        self.envs = agents.VectorMazeEnv(num_envs, num_threads=num_threads, seed=0)
+        self.envs.reset(seed=1)
+        # (Drawn ahead, 1,024 periods of them, 19 s of play: the table's cycle is longer than
+        # most episodes, so the games are as random as fresh draws, whose cost is not the
+        # module's.)
+        self.actions = np.random.default_rng(0).uniform(-1, 1, (1024, num_envs, 2))
+        self.calls = 0
+
+    def spell(self, seconds):
+        """Control steps (environments x calls) a second over `seconds` of play."""
         calls, begin = 0, time.perf_counter()
         while time.perf_counter() - begin < seconds:
-            envs.step(actions[calls % len(actions)])
+            self.envs.step(self.actions[(self.calls + calls) % len(self.actions)])
             calls += 1
-        best = max(best, calls * num_envs / (time.perf_counter() - begin))
-    return best
+        self.calls += calls
+        return calls * self.envs.num_envs / (time.perf_counter() - begin)
 
 
-def _one_thread_of_64(seconds):
-    return python_rate(64, 1, seconds)
-
-
-def two_processes_rate(seconds):
-    """Control steps a second of two processes at once, each VectorMazeEnv(64) on one thread."""
-    with multiprocessing.get_context("fork").Pool(2) as pool:
-        return sum(pool.map(_one_thread_of_64, [seconds, seconds]))
+def best_rate(num_envs, num_threads, seconds):
+    """The best of three spells of `seconds`: control steps a second."""
+    player = Player(num_envs, num_threads)
+    return max(player.spell(seconds) for _ in range(3))
 
 
 def cpp_loop_rate(bench):
@@ -62,29 +70,75 @@ def cpp_loop_rate(bench):
                    if r.get("run_type") == "iteration")
 
 
+def _play_on_request(connection):
+    """A process of its own: plays a spell of the length each request names, until None."""
+    player = Player(64, 1)
+    for seconds in iter(connection.recv, None):
+        connection.send(player.spell(seconds))
+
+
+def in_turns(rounds, seconds):
+    """Rounds of spells: one thread pinned to each core, two threads, two processes at once.
+    Returns, over the rounds, two threads' and two processes' rates against one thread's (its
+    mean over the cores), and the first core's rate against the second's."""
+    cores = sorted(os.sched_getaffinity(0))
+    context = multiprocessing.get_context("fork")  # (before this process starts any thread)
+    links = [context.Pipe() for _ in range(2)]
+    workers = [context.Process(target=_play_on_request, args=(child,)) for _, child in links]
+    for worker in workers:
+        worker.start()
+    one, two = Player(64, 1), Player(64, 2)
+    threads, processes, cores_apart = [], [], []
+    try:
+        for _ in range(rounds):
+            on_core = []
+            for core in cores[:2]:
+                os.sched_setaffinity(0, {core})  # this thread alone: the one that steps `one`
+                on_core.append(one.spell(seconds))
+            os.sched_setaffinity(0, cores)
+            one_thread = statistics.mean(on_core)
+            threads.append(two.spell(seconds) / one_thread)
+            for parent, _ in links:
+                parent.send(seconds)
+            processes.append(sum(parent.recv() for parent, _ in links) / one_thread)
+            cores_apart.append(on_core[0] / on_core[-1])
+    finally:
+        os.sched_setaffinity(0, cores)
+        for parent, _ in links:
+            parent.send(None)
+        for worker in workers:
+            worker.join()
+    return threads, processes, cores_apart
+
+
+def spread(values):
+    """The median with the quartiles, as text."""
+    low, median, high = statistics.quantiles(values, n=4)
+    return "%.2f (quartiles %.2f to %.2f)" % (median, low, high)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("bench", help="the marble_maze_bench executable")
-    parser.add_argument("--seconds", type=float, default=1.0, help="a spell's wall time")
+    parser.add_argument("--seconds", type=float, default=1.0, help="a case's spell of wall time")
+    parser.add_argument("--rounds", type=int, default=40, help="rounds of the spells in turns")
+    parser.add_argument("--spell", type=float, default=0.05, help="a spell in turns, seconds")
     args = parser.parse_args()
     loop = cpp_loop_rate(args.bench)
     print("marble_maze.agents from Python, random actions, fast, 55 Hz (best of 3 x %g s):"
           % args.seconds)
     print("%-44s %12.0f control steps/s  1.00" % ("the hand-written C++ loop (one Session):", loop))
-    one_thread = {}
     for num_envs, num_threads in CASES:
-        rate = python_rate(num_envs, num_threads, args.seconds)
+        rate = best_rate(num_envs, num_threads, args.seconds)
         label = "VectorMazeEnv(%d), %d thread%s:" % (
             num_envs, num_threads, "s" if num_threads > 1 else "")
-        line = "%-44s %12.0f control steps/s  %.2f" % (label, rate, rate / loop)
-        if num_threads == 1:
-            one_thread[num_envs] = rate
-        else:
-            line += " (%.2f times one thread)" % (rate / one_thread[num_envs])
-        print(line)
-    both = two_processes_rate(args.seconds)
-    print("%-44s %12.0f control steps/s  %.2f (%.2f times one thread: the two cores' most)"
-          % ("two processes at once, 1 thread each:", both, both / loop, both / one_thread[64]))
+        print("%-44s %12.0f control steps/s  %.2f" % (label, rate, rate / loop))
+    threads, processes, cores_apart = in_turns(args.rounds, args.spell)
+    print("VectorMazeEnv(64) in turns, %d rounds of %g s spells, against one thread (the mean "
+          "of a spell on each core):" % (args.rounds, args.spell))
+    print("  two threads:   %s times one thread" % spread(threads))
+    print("  two processes: %s times one thread: the two cores' most" % spread(processes))
+    print("  the first core: %s times the second's speed" % spread(cores_apart))
     return 0
 
 

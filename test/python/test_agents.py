@@ -100,6 +100,19 @@ class AgentsTest(unittest.TestCase):
         self.assertIsNone(final[1])
         self.assertIsNone(final[2])
 
+    def test_a_single_env_returns_the_last_observation_of_its_episode(self):
+        single, vector = agents.MazeEnv(maze=HOLE_BESIDE), agents.VectorMazeEnv(1, maze=HOLE_BESIDE)
+        start, _ = single.reset()
+        vector.reset()
+        for period in range(200):  # into the hole beside the start, both alike
+            obs, _, terminated, _, _ = single.step(np.array([0, 1]))
+            _, _, _, _, info = vector.step(np.array([[0, 1]]))
+            if terminated:
+                break
+        self.assertTrue(terminated, "no hole in 200 periods")
+        self.assertGreater(float(obs[0]), float(start[0]) + 0.01)  # over the hole, not reset
+        np.testing.assert_array_equal(obs, info["final_observation"][0])
+
     def test_an_episode_is_truncated_at_its_time_limit(self):
         envs = agents.VectorMazeEnv(1, max_episode_seconds=0.2)
         envs.reset()

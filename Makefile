@@ -25,7 +25,7 @@ demo: build
 	@bash scripts/demo.sh $(ARGS)
 
 # The step's cost (Google Benchmark), each case also as a ratio to free flight in the same run;
-# then marble_maze.agents from Python against the C++ loop (bench/agents_bench.py, 20 s) and ROS
+# then marble_maze.agents from Python against the C++ loop (bench/agents_bench.py, 25 s) and ROS
 # lockstep's periods a second (scripts/bench_lockstep.sh, about a minute).
 bench: build
 	@. scripts/workspace.sh && "$$WS/devel/lib/marble_maze/marble_maze_bench"

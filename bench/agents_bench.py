@@ -4,15 +4,16 @@ hand-written C++ loop on one Session (marble_maze_bench's BM_AgentControlStep/en
 the same run. Each case is the best of three spells of wall time.
 
 Then what two threads gain, in turns of short spells so that every figure of a round meets the
-same machine: VectorMazeEnv(64) on one thread pinned to each of the first two cores, then on two
-threads, then two processes at once, each VectorMazeEnv(64) on one thread (the most two threads
-could give). One thread's rate is the mean over the two cores: on a virtual machine one core can
-run a third slower than the other for minutes, and a thread left to the scheduler would measure
-whichever it landed on. `make bench` runs it.
+same machine, all on the first two cores: VectorMazeEnv(64) on one thread pinned to each core,
+then on two threads, then two processes at once, each VectorMazeEnv(64) on one thread (the most
+two threads could give). One thread's rate is the mean over the two cores: on a virtual machine
+one core can run a third slower than the other for minutes, and a thread left to the scheduler
+would measure whichever it landed on. `make bench` runs it.
 
 usage: agents_bench.py MARBLE_MAZE_BENCH [--seconds S] [--rounds N] [--spell S]
 """
 import argparse
+import contextlib
 import json
 import multiprocessing
 import os
@@ -78,21 +79,27 @@ def _play_on_request(connection):
 
 
 def in_turns(rounds, seconds):
-    """Rounds of spells: one thread pinned to each core, two threads, two processes at once.
-    Returns, over the rounds, two threads' and two processes' rates against one thread's (its
-    mean over the cores), and the first core's rate against the second's."""
-    cores = sorted(os.sched_getaffinity(0))
-    context = multiprocessing.get_context("fork")  # (before this process starts any thread)
+    """Rounds of spells: one thread pinned to each of two cores, two threads, two processes at
+    once, all on those two cores. Returns, over the rounds, two threads' and two processes'
+    rates against one thread's (its mean over the cores), and the first core's rate against the
+    second's."""
+    allowed = os.sched_getaffinity(0)
+    cores = sorted(allowed)[:2]
+    os.sched_setaffinity(0, cores)  # (inherited by the processes and by `two`'s thread)
+    # Forked while no thread of the module's runs: the earlier cases' went with their Players.
+    context = multiprocessing.get_context("fork")
     links = [context.Pipe() for _ in range(2)]
-    workers = [context.Process(target=_play_on_request, args=(child,)) for _, child in links]
-    for worker in workers:
-        worker.start()
-    one, two = Player(64, 1), Player(64, 2)
+    workers = [context.Process(target=_play_on_request, args=(child,), daemon=True)
+               for _, child in links]
     threads, processes, cores_apart = [], [], []
     try:
+        for worker, (_, child) in zip(workers, links):
+            worker.start()
+            child.close()  # (the worker's end: a worker that dies ends the parent's reads)
+        one, two = Player(64, 1), Player(64, 2)
         for _ in range(rounds):
             on_core = []
-            for core in cores[:2]:
+            for core in cores:
                 os.sched_setaffinity(0, {core})  # this thread alone: the one that steps `one`
                 on_core.append(one.spell(seconds))
             os.sched_setaffinity(0, cores)
@@ -103,25 +110,37 @@ def in_turns(rounds, seconds):
             processes.append(sum(parent.recv() for parent, _ in links) / one_thread)
             cores_apart.append(on_core[0] / on_core[-1])
     finally:
-        os.sched_setaffinity(0, cores)
+        os.sched_setaffinity(0, allowed)
         for parent, _ in links:
-            parent.send(None)
+            with contextlib.suppress(OSError):
+                parent.send(None)
         for worker in workers:
-            worker.join()
+            worker.join(timeout=10)
+            if worker.is_alive():
+                worker.terminate()
     return threads, processes, cores_apart
 
 
 def spread(values):
-    """The median with the quartiles, as text."""
-    low, median, high = statistics.quantiles(values, n=4)
+    """The median with the quartiles (of the values themselves: inclusive), as text."""
+    low, median, high = statistics.quantiles(values, n=4, method="inclusive")
     return "%.2f (quartiles %.2f to %.2f)" % (median, low, high)
+
+
+def at_least_two(text):
+    """argparse's type for --rounds: quartiles need two rounds."""
+    value = int(text)
+    if value < 2:
+        raise argparse.ArgumentTypeError("%s: expected at least 2" % text)
+    return value
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("bench", help="the marble_maze_bench executable")
     parser.add_argument("--seconds", type=float, default=1.0, help="a case's spell of wall time")
-    parser.add_argument("--rounds", type=int, default=40, help="rounds of the spells in turns")
+    parser.add_argument("--rounds", type=at_least_two, default=40,
+                        help="rounds of the spells in turns")
     parser.add_argument("--spell", type=float, default=0.05, help="a spell in turns, seconds")
     args = parser.parse_args()
     loop = cpp_loop_rate(args.bench)

@@ -142,12 +142,15 @@ class VectorMazeEnv(_VectorEnvBase):
             np.asarray(actions, dtype=np.float64).reshape(self.num_envs, ACTION_SIZE))
         info = {}
         if ended:
-            # (Gymnasium's layout: an object array, None where the episode goes on.)
+            # (Gymnasium 0.29's layout: object arrays, None where the episode goes on.)
             final_observation = np.empty(self.num_envs, dtype=object)
+            final_info = np.empty(self.num_envs, dtype=object)
             for i in ended:
                 final_observation[i] = final[i]
-            info["final_observation"] = final_observation
-            info["_final_observation"] = terminated | truncated
+                final_info[i] = {}
+            done = terminated | truncated
+            info["final_observation"], info["_final_observation"] = final_observation, done
+            info["final_info"], info["_final_info"] = final_info, done
         return obs, reward, terminated, truncated, info
 
     def images(self, pixel=0.002):

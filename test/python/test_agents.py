@@ -99,6 +99,8 @@ class AgentsTest(unittest.TestCase):
         self.assertEqual(final[0].shape, (agents.OBSERVATION_SIZE,))
         self.assertIsNone(final[1])
         self.assertIsNone(final[2])
+        self.assertEqual(list(info["final_info"]), [{}, None, None])
+        np.testing.assert_array_equal(info["_final_info"], [True, False, False])
 
     def test_a_single_env_returns_the_last_observation_of_its_episode(self):
         single, vector = agents.MazeEnv(maze=HOLE_BESIDE), agents.VectorMazeEnv(1, maze=HOLE_BESIDE)
@@ -106,10 +108,11 @@ class AgentsTest(unittest.TestCase):
         vector.reset()
         for period in range(200):  # into the hole beside the start, both alike
             obs, _, terminated, _, _ = single.step(np.array([0, 1]))
-            _, _, _, _, info = vector.step(np.array([[0, 1]]))
+            _, _, ended_too, _, info = vector.step(np.array([[0, 1]]))
             if terminated:
                 break
         self.assertTrue(terminated, "no hole in 200 periods")
+        self.assertTrue(ended_too[0], "the vector environment went on")
         self.assertGreater(float(obs[0]), float(start[0]) + 0.01)  # over the hole, not reset
         np.testing.assert_array_equal(obs, info["final_observation"][0])
 

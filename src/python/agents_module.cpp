@@ -33,6 +33,8 @@ class VectorEnv {
     return obs;
   }
 
+  /// (obs, rewards, terminated, truncated, final_obs, ended): `ended` lists the environments
+  /// whose episode ended, the only rows of `final_obs` written.
   py::tuple step(const Doubles& actions) {
     const int n = env_.size();
     if (actions.ndim() != 2 || actions.shape(0) != n ||

@@ -1,7 +1,8 @@
 """Control steps a second of marble_maze.agents.VectorMazeEnv from Python (random actions, the
 classic maze at `fast`, 55 Hz), with 1, 8 and 64 environments on 1 and 2 threads, against the
 hand-written C++ loop on one Session (marble_maze_bench's BM_AgentControlStep/envs:0) timed in
-the same run. Each case is the best of three spells of wall time.
+the same run, both on the first core (the case of two threads on the first two). Each case is
+the best of three spells of wall time.
 
 Then what two threads gain, in turns of short spells so that every figure of a round meets the
 same machine, all on the first two cores: VectorMazeEnv(64) on one thread pinned to each core,
@@ -16,6 +17,7 @@ import argparse
 import contextlib
 import json
 import multiprocessing
+import multiprocessing.connection
 import os
 import statistics
 import subprocess
@@ -78,6 +80,13 @@ def _play_on_request(connection):
         connection.send(player.spell(seconds))
 
 
+def _answer(link, worker):
+    """The worker's answer, or an error if it has died (whoever else holds its pipe's ends)."""
+    if link not in multiprocessing.connection.wait([link, worker.sentinel]):
+        raise RuntimeError("a worker of the two processes died (exit code %s)" % worker.exitcode)
+    return link.recv()
+
+
 def in_turns(rounds, seconds):
     """Rounds of spells: one thread pinned to each of two cores, two threads, two processes at
     once, all on those two cores. Returns, over the rounds, two threads' and two processes'
@@ -85,17 +94,20 @@ def in_turns(rounds, seconds):
     second's."""
     allowed = os.sched_getaffinity(0)
     cores = sorted(allowed)[:2]
-    os.sched_setaffinity(0, cores)  # (inherited by the processes and by `two`'s thread)
-    # Forked while no thread of the module's runs: the earlier cases' went with their Players.
-    context = multiprocessing.get_context("fork")
-    links = [context.Pipe() for _ in range(2)]
-    workers = [context.Process(target=_play_on_request, args=(child,), daemon=True)
-               for _, child in links]
+    links, workers = [], []
     threads, processes, cores_apart = [], [], []
     try:
-        for worker, (_, child) in zip(workers, links):
+        os.sched_setaffinity(0, cores)  # (inherited by the processes and by `two`'s thread)
+        # Forked while no thread of the module's runs: the earlier cases' went with their
+        # Players.
+        context = multiprocessing.get_context("fork")
+        for _ in range(2):
+            link, child = context.Pipe()
+            worker = context.Process(target=_play_on_request, args=(child,), daemon=True)
             worker.start()
-            child.close()  # (the worker's end: a worker that dies ends the parent's reads)
+            child.close()
+            links.append(link)
+            workers.append(worker)
         one, two = Player(64, 1), Player(64, 2)
         for _ in range(rounds):
             on_core = []
@@ -105,19 +117,20 @@ def in_turns(rounds, seconds):
             os.sched_setaffinity(0, cores)
             one_thread = statistics.mean(on_core)
             threads.append(two.spell(seconds) / one_thread)
-            for parent, _ in links:
-                parent.send(seconds)
-            processes.append(sum(parent.recv() for parent, _ in links) / one_thread)
+            for link in links:
+                link.send(seconds)
+            processes.append(sum(map(_answer, links, workers)) / one_thread)
             cores_apart.append(on_core[0] / on_core[-1])
     finally:
         os.sched_setaffinity(0, allowed)
-        for parent, _ in links:
+        for link in links:
             with contextlib.suppress(OSError):
-                parent.send(None)
+                link.send(None)
         for worker in workers:
             worker.join(timeout=10)
             if worker.is_alive():
                 worker.terminate()
+                worker.join()
     return threads, processes, cores_apart
 
 
@@ -135,23 +148,40 @@ def at_least_two(text):
     return value
 
 
+def positive(text):
+    """argparse's type for a spell's seconds."""
+    value = float(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError("%s: expected a positive number of seconds" % text)
+    return value
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("bench", help="the marble_maze_bench executable")
-    parser.add_argument("--seconds", type=float, default=1.0, help="a case's spell of wall time")
+    parser.add_argument("--seconds", type=positive, default=1.0,
+                        help="a case's spell of wall time")
     parser.add_argument("--rounds", type=at_least_two, default=40,
                         help="rounds of the spells in turns")
-    parser.add_argument("--spell", type=float, default=0.05, help="a spell in turns, seconds")
+    parser.add_argument("--spell", type=positive, default=0.05, help="a spell in turns, seconds")
     args = parser.parse_args()
+    allowed = os.sched_getaffinity(0)
+    cores = sorted(allowed)[:2]
+    os.sched_setaffinity(0, cores[:1])  # (inherited by the C++ loop's process)
     loop = cpp_loop_rate(args.bench)
-    print("marble_maze.agents from Python, random actions, fast, 55 Hz (best of 3 x %g s):"
-          % args.seconds)
+    print("marble_maze.agents from Python, random actions, fast, 55 Hz (best of 3 x %g s; one "
+          "thread on the first core):" % args.seconds)
     print("%-44s %12.0f control steps/s  1.00" % ("the hand-written C++ loop (one Session):", loop))
     for num_envs, num_threads in CASES:
+        os.sched_setaffinity(0, cores[:num_threads])  # (inherited by the pool's threads)
         rate = best_rate(num_envs, num_threads, args.seconds)
         label = "VectorMazeEnv(%d), %d thread%s:" % (
             num_envs, num_threads, "s" if num_threads > 1 else "")
         print("%-44s %12.0f control steps/s  %.2f" % (label, rate, rate / loop))
+    os.sched_setaffinity(0, allowed)
+    if len(allowed) < 2:
+        print("VectorMazeEnv(64) in turns: needs two cores, this process has one")
+        return 0
     threads, processes, cores_apart = in_turns(args.rounds, args.spell)
     print("VectorMazeEnv(64) in turns, %d rounds of %g s spells, against one thread (the mean "
           "of a spell on each core):" % (args.rounds, args.spell))

@@ -16,8 +16,9 @@ velocity vx, vy; the board's roll, pitch; the target roll, pitch; the next waypo
 to the goal, dx, dy from the marble. The reward: progress_reward per metre nearer the goal along
 the route planner's path, -hole_penalty on a hole or off the board, +goal_bonus at the goal.
 An episode is terminated in a hole, off the board or at the goal, and truncated after
-max_episode_seconds. Finished episodes start again at once, as Gymnasium's vector environments
-do; their last observation is in info["final_observation"].
+max_episode_seconds. Finished episodes start again at once, as Gymnasium 0.29's vector
+environments do; their last observation is in info["final_observation"], their last info in
+info["final_info"].
 
 Every episode starts with the marble at rest and the board level. randomize varies episodes:
 {"start": "random"} puts the marble on a random open column with a route to the goal, and
@@ -150,7 +151,7 @@ class VectorMazeEnv(_VectorEnvBase):
                 final_info[i] = {}
             done = terminated | truncated
             info["final_observation"], info["_final_observation"] = final_observation, done
-            info["final_info"], info["_final_info"] = final_info, done
+            info["final_info"], info["_final_info"] = final_info, done.copy()
         return obs, reward, terminated, truncated, info
 
     def images(self, pixel=0.002):

@@ -87,13 +87,12 @@ def _answer(link, worker):
     return link.recv()
 
 
-def in_turns(rounds, seconds):
-    """Rounds of spells: one thread pinned to each of two cores, two threads, two processes at
-    once, all on those two cores. Returns, over the rounds, two threads' and two processes'
-    rates against one thread's (its mean over the cores), and the first core's rate against the
-    second's."""
+def in_turns(cores, rounds, seconds):
+    """Rounds of spells: one thread pinned to each of the two `cores`, two threads, two
+    processes at once, all on those cores. Returns, over the rounds, two threads' and two
+    processes' rates against one thread's (its mean over the cores), and the first core's rate
+    against the second's."""
     allowed = os.sched_getaffinity(0)
-    cores = sorted(allowed)[:2]
     links, workers = [], []
     threads, processes, cores_apart = [], [], []
     try:
@@ -179,10 +178,10 @@ def main():
             num_envs, num_threads, "s" if num_threads > 1 else "")
         print("%-44s %12.0f control steps/s  %.2f" % (label, rate, rate / loop))
     os.sched_setaffinity(0, allowed)
-    if len(allowed) < 2:
+    if len(cores) < 2:
         print("VectorMazeEnv(64) in turns: needs two cores, this process has one")
         return 0
-    threads, processes, cores_apart = in_turns(args.rounds, args.spell)
+    threads, processes, cores_apart = in_turns(cores, args.rounds, args.spell)
     print("VectorMazeEnv(64) in turns, %d rounds of %g s spells, against one thread (the mean "
           "of a spell on each core):" % (args.rounds, args.spell))
     print("  two threads:   %s times one thread" % spread(threads))

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ struct AgentEnvOptions {
   std::vector<Range> ranges;
   /// What the agent's sensors make of the state: delay, camera rate, noise, tilt quantisation.
   SensorOptions sensors;
+  /// Environment i's episodes are drawn from (seed, i) until a reset gives another seed.
+  std::uint64_t seed = 0;
 };
 
 /// The route to the goal from every column of a maze, planned once: where the marble should go
@@ -136,6 +139,11 @@ class VectorAgentEnv {
   /// Every environment back to a new episode; `obs` gets N x kObservationSize. With a seed,
   /// environment i's episodes are drawn from (seed, i) from now on.
   void reset(float* obs, const std::uint64_t* seed = nullptr);
+  /// The same with a seed of its own for each environment that has one in `seeds` (N of them, as
+  /// Gymnasium's vector environments take a list): environment i's episodes are drawn from
+  /// (seeds[i], 0) from now on, those of a lone environment reset with that seed. Throws
+  /// ParamError when there are not N.
+  void reset(float* obs, const std::vector<std::optional<std::uint64_t>>& seeds);
   /// One control period of every environment under `actions` (N x kActionSize): fills `obs`,
   /// `rewards`, `terminated` and `truncated` (N each); where an episode ended, `final_obs` gets
   /// its last observation and `obs` the new episode's first.
@@ -150,6 +158,8 @@ class VectorAgentEnv {
   class Pool;
   /// Runs `work(first, last)` over ranges that cover the environments, spread over the threads.
   void forEachSlice(const std::function<void(int, int)>& work);
+  /// Every environment back to a new episode, each first given to `reseed(env, i)`.
+  void resetEach(float* obs, const std::function<void(AgentEnv&, int)>& reseed);
 
   std::vector<std::unique_ptr<AgentEnv>> envs_;
   std::unique_ptr<Pool> pool_;  // the threads beside the caller's, waiting between calls

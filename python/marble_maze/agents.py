@@ -24,7 +24,8 @@ Every episode starts with the marble at rest and the board level. randomize vari
 {"start": "random"} puts the marble on a random open column with a route to the goal, and
 {"friction": (0.2, 0.4), ...} draws each key of the key table uniformly from its range. The
 n-th episode of environment i after reset(seed) depends on (seed, i, n) alone: the same bit for
-bit whatever num_threads.
+bit whatever num_threads. reset(seed=[s0, s1, ...]), a seed or None for each environment, draws
+environment i's from (s_i, 0, n), a MazeEnv's after reset(seed=s_i).
 
 observation models the sensors of a real board: {"delay_periods": 2, "delay_jitter": 1} shows
 the camera's values (x, y, vx, vy, dx, dy) 2 to 3 control periods late, a jitter drawn each
@@ -83,9 +84,21 @@ SENSOR_OPTIONS = ("delay_periods", "delay_jitter", "camera_rate", "position_nois
                   "tilt_quantum")
 
 
+def _seed(seed, name):
+    """An integer seed as the core takes it (None as it is), or a ValueError naming the
+    argument."""
+    if seed is None:
+        return None
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)) \
+            or not 0 <= seed < 2**64:
+        raise ValueError("%s: expected an integer from 0 to 2**64 - 1, got %r" % (name, seed))
+    return int(seed)
+
+
 def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds, tilt_rates,
-          progress_reward, hole_penalty, goal_bonus, sets, randomize, observation):
+          progress_reward, hole_penalty, goal_bonus, sets, randomize, observation, seed):
     o = _agents.Options()
+    o.seed = _seed(seed, "seed") or 0
     o.maze, o.preset = str(maze), str(preset)
     o.control_rate, o.max_episode_seconds = float(control_rate), float(max_episode_seconds)
     o.tilt_rates = bool(tilt_rates)
@@ -120,20 +133,30 @@ class VectorMazeEnv(_VectorEnvBase):
                  sets=None, observation=None):
         self._env = _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds,
                           tilt_rates, progress_reward, hole_penalty, goal_bonus, sets, randomize,
-                          observation)
+                          observation, seed)
         self.num_envs = self._env.num_envs
         self.single_observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.single_action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
         self.observation_space = Box(-np.inf, np.inf, (self.num_envs, OBSERVATION_SIZE),
                                      np.float32)
         self.action_space = Box(-1.0, 1.0, (self.num_envs, ACTION_SIZE), np.float32)
+        if seed is not None:
+            self.action_space.seed(int(seed))
         self.control_period = 1.0 / control_rate
         self.steps_per_period = self._env.steps_per_period
         self.step_length = self._env.step_length
-        self._seed = seed  # the first reset's, unless it is given one
 
     def reset(self, seed=None, options=None):
-        seed, self._seed = (self._seed if seed is None else seed), None
+        """seed: an integer, environment i's episodes drawn from (seed, i) from now on; or a list
+        of an integer or None for each environment, as Gymnasium's vector environments take,
+        environment i's drawn from (seed[i], 0), those of a MazeEnv reset with seed[i] (None: its
+        episodes go on); or None, every environment's episodes go on."""
+        if isinstance(seed, (list, tuple, np.ndarray)):
+            seeds = [_seed(s, "reset: seed[%d]" % i) for i, s in enumerate(seed)]
+            if seeds and seeds[0] is not None:
+                self.action_space.seed(seeds[0])
+            return self._env.reset_each(seeds), {}
+        seed = _seed(seed, "reset: seed")
         if seed is not None:
             self.action_space.seed(seed)
         return self._env.reset(seed), {}
@@ -179,14 +202,16 @@ class MazeEnv(_EnvBase):
                  seed=0, randomize=None, tilt_rates=False, progress_reward=10.0,
                  hole_penalty=1.0, goal_bonus=1.0, sets=None, observation=None):
         self._env = _make(1, 1, maze, preset, control_rate, max_episode_seconds, tilt_rates,
-                          progress_reward, hole_penalty, goal_bonus, sets, randomize, observation)
-        self._seed = seed
+                          progress_reward, hole_penalty, goal_bonus, sets, randomize, observation,
+                          seed)
         self.observation_space = Box(-np.inf, np.inf, (OBSERVATION_SIZE,), np.float32)
         self.action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
+        if seed is not None:
+            self.action_space.seed(int(seed))
         self.render_mode = None
 
     def reset(self, seed=None, options=None):
-        seed, self._seed = (self._seed if seed is None else seed), None
+        seed = _seed(seed, "reset: seed")
         if seed is not None:
             self.action_space.seed(seed)
         return self._env.reset(seed)[0], {}

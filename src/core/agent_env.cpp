@@ -76,6 +76,7 @@ AgentEnv::AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
       route_(std::move(route)),
       options_(options),
       nominal_(scene.params),
+      seed_(options.seed),
       sensors_(options.sensors, options.control_rate) {
   steps_per_period_ = static_cast<int>(std::llround(1.0 / options.control_rate / step()));
   max_periods_ = static_cast<int>(std::llround(options.max_episode_seconds * options.control_rate));
@@ -291,7 +292,7 @@ VectorAgentEnv::VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int
   }
   for (int i = 0; i < num_envs; ++i) {
     envs_.push_back(std::make_unique<AgentEnv>(scene, route, options));
-    envs_.back()->seed(0, static_cast<std::uint64_t>(i));
+    envs_.back()->seed(options.seed, static_cast<std::uint64_t>(i));
   }
   // (Each environment is stepped by one thread alone and touches nothing shared: the same
   // episodes whatever the split.)
@@ -317,13 +318,29 @@ std::ptrdiff_t slot(int i, int size) {
 
 }  // namespace
 
-void VectorAgentEnv::reset(float* obs, const std::uint64_t* seed) {
+void VectorAgentEnv::resetEach(float* obs, const std::function<void(AgentEnv&, int)>& reseed) {
   forEachSlice([&](int first, int last) {
     for (int i = first; i < last; ++i) {
-      if (seed) envs_[static_cast<std::size_t>(i)]->seed(*seed, static_cast<std::uint64_t>(i));
-      envs_[static_cast<std::size_t>(i)]->reset();
-      envs_[static_cast<std::size_t>(i)]->observe(obs + slot(i, AgentEnv::kObservationSize));
+      AgentEnv& env = *envs_[static_cast<std::size_t>(i)];
+      reseed(env, i);
+      env.reset();
+      env.observe(obs + slot(i, AgentEnv::kObservationSize));
     }
+  });
+}
+
+void VectorAgentEnv::reset(float* obs, const std::uint64_t* seed) {
+  resetEach(obs, [&](AgentEnv& env, int i) {
+    if (seed) env.seed(*seed, static_cast<std::uint64_t>(i));
+  });
+}
+
+void VectorAgentEnv::reset(float* obs, const std::vector<std::optional<std::uint64_t>>& seeds) {
+  if (seeds.size() != envs_.size())
+    throw ParamError("seed: expected " + std::to_string(size()) +
+                     " seeds, one an environment, got " + std::to_string(seeds.size()));
+  resetEach(obs, [&](AgentEnv& env, int i) {
+    if (const auto& seed = seeds[static_cast<std::size_t>(i)]) env.seed(*seed, 0);
   });
 }
 

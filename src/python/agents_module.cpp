@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "marble_maze/agent_env.h"
 
@@ -29,6 +30,16 @@ class VectorEnv {
     {
       py::gil_scoped_release release;
       env_.reset(obs.mutable_data(), seed ? &*seed : nullptr);
+    }
+    return obs;
+  }
+
+  /// reset with a seed, or none, for each environment.
+  Floats resetEach(const std::vector<std::optional<std::uint64_t>>& seeds) {
+    Floats obs({env_.size(), mm::AgentEnv::kObservationSize});
+    {
+      py::gil_scoped_release release;
+      env_.reset(obs.mutable_data(), seeds);
     }
     return obs;
   }
@@ -127,11 +138,13 @@ PYBIND11_MODULE(_agents, m) {
       .def_readwrite("goal_bonus", &mm::AgentEnvOptions::goal_bonus)
       .def_readwrite("random_start", &mm::AgentEnvOptions::random_start)
       .def_readwrite("ranges", &mm::AgentEnvOptions::ranges)
-      .def_readwrite("sensors", &mm::AgentEnvOptions::sensors);
+      .def_readwrite("sensors", &mm::AgentEnvOptions::sensors)
+      .def_readwrite("seed", &mm::AgentEnvOptions::seed);
   py::class_<VectorEnv>(m, "VectorEnv")
       .def(py::init<int, const mm::AgentEnvOptions&, int>(), py::arg("num_envs"),
            py::arg("options"), py::arg("num_threads"))
       .def("reset", &VectorEnv::reset, py::arg("seed") = py::none())
+      .def("reset_each", &VectorEnv::resetEach, py::arg("seeds"))
       .def("step", &VectorEnv::step)
       .def("images", &VectorEnv::images, py::arg("pixel"))
       .def_property_readonly("num_envs", &VectorEnv::size)

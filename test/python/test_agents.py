@@ -170,6 +170,48 @@ class AgentsTest(unittest.TestCase):
         other, _ = episodes(8, 1)
         self.assertFalse(np.array_equal(firsts[0], other[0]))
 
+    def test_a_seed_for_each_environment_gives_it_a_lone_environments_episodes(self):
+        settings = dict(randomize={"start": "random", "friction": (0.2, 0.4)},
+                        max_episode_seconds=0.5)
+        actions = np.random.default_rng(3).uniform(-1, 1, (60, 4, 2))
+
+        def play(envs, first, columns):
+            """Observations, rewards and ends under the actions of environments `columns`."""
+            trace = [first]
+            for a in actions:
+                obs, reward, terminated, truncated, _ = envs.step(a[columns])
+                trace += [obs, reward, terminated, truncated]
+            return trace
+
+        for threads in (1, 2):
+            # Seeded as Gymnasium's vector environments are: a list, None where the episodes go
+            # on (here from the constructor's seed, 9).
+            envs = agents.VectorMazeEnv(4, seed=9, num_threads=threads, **settings)
+            trace = play(envs, envs.reset(seed=[11, None, 12, 11])[0], [0, 1, 2, 3])
+            going_on = agents.VectorMazeEnv(4, seed=9, **settings)
+            kept = play(going_on, going_on.reset()[0], [0, 1, 2, 3])
+            for i, seed in enumerate([11, None, 12, 11]):
+                if seed is None:
+                    reference, row = kept, i
+                else:
+                    lone = agents.VectorMazeEnv(1, seed=seed, **settings)
+                    reference, row = play(lone, lone.reset()[0], [i]), 0
+                for a, b in zip(trace, reference):  # the episodes (and resets) bit for bit
+                    np.testing.assert_array_equal(a[i], b[row])
+            self.assertTrue(any(t[1] for t in trace[3::4]))  # episodes ended within the play
+        self.assertFalse(np.array_equal(trace[0][0], trace[0][2]))  # 11 and 12 differ
+        self.assertEqual(agents.MazeEnv(**settings).reset(seed=11)[0].tolist(),
+                         trace[0][0].tolist())
+        with self.assertRaisesRegex(ValueError, "seed: expected 4 seeds, one an environment, "
+                                    "got 3"):
+            envs.reset(seed=[1, 2, 3])
+        with self.assertRaisesRegex(ValueError, r"reset: seed\[1\]: expected an integer"):
+            envs.reset(seed=[1, -2, 3, 4])
+        with self.assertRaisesRegex(ValueError, "reset: seed: expected an integer"):
+            envs.reset(seed=2.5)
+        with self.assertRaisesRegex(ValueError, "seed: expected an integer"):
+            agents.MazeEnv(seed="one")
+
     def test_a_generated_maze_is_played_like_any(self):
         envs = agents.VectorMazeEnv(2, maze="generated:seed=3,cells=5x5")
         obs, _ = envs.reset()

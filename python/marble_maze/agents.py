@@ -95,6 +95,13 @@ def _seed(seed, name):
     return int(seed)
 
 
+def _no_options(options):
+    """reset's options, which Gymnasium's API allows and these environments take none of."""
+    if options:
+        raise ValueError("reset: options: none are taken (the settings are the constructor's), "
+                         "got %r" % (options,))
+
+
 def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds, tilt_rates,
           progress_reward, hole_penalty, goal_bonus, sets, randomize, observation, seed):
     o = _agents.Options()
@@ -150,7 +157,9 @@ class VectorMazeEnv(_VectorEnvBase):
         """seed: an integer, environment i's episodes drawn from (seed, i) from now on; or a list
         of an integer or None for each environment, as Gymnasium's vector environments take,
         environment i's drawn from (seed[i], 0), those of a MazeEnv reset with seed[i] (None: its
-        episodes go on); or None, every environment's episodes go on."""
+        episodes go on); or None, every environment's episodes go on. options: none are taken
+        (the settings are the constructor's)."""
+        _no_options(options)
         if isinstance(seed, (list, tuple, np.ndarray)):
             seeds = [_seed(s, "reset: seed[%d]" % i) for i, s in enumerate(seed)]
             if seeds and seeds[0] is not None:
@@ -211,6 +220,7 @@ class MazeEnv(_EnvBase):
         self.render_mode = None
 
     def reset(self, seed=None, options=None):
+        _no_options(options)
         seed = _seed(seed, "reset: seed")
         if seed is not None:
             self.action_space.seed(seed)

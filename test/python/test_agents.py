@@ -211,6 +211,9 @@ class AgentsTest(unittest.TestCase):
             envs.reset(seed=2.5)
         with self.assertRaisesRegex(ValueError, "seed: expected an integer"):
             agents.MazeEnv(seed="one")
+        with self.assertRaisesRegex(ValueError, "reset: options: none are taken"):
+            agents.MazeEnv().reset(options={"start": "random"})
+        self.assertEqual(envs.reset(seed=1, options={})[0].shape, (4, 10))
 
     def test_a_generated_maze_is_played_like_any(self):
         envs = agents.VectorMazeEnv(2, maze="generated:seed=3,cells=5x5")

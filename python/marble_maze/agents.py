@@ -18,7 +18,8 @@ the route planner's path, -hole_penalty on a hole or off the board, +goal_bonus 
 An episode is terminated in a hole, off the board or at the goal, and truncated after
 max_episode_seconds. Finished episodes start again at once, as Gymnasium 0.29's vector
 environments do; their last observation is in info["final_observation"], their last info in
-info["final_info"].
+info["final_info"] (the observation also in info["final_obs"], Gymnasium 1.x's same-step
+autoreset).
 
 Every episode starts with the marble at rest and the board level. randomize varies episodes:
 {"start": "random"} puts the marble on a random open column with a route to the goal, and
@@ -38,7 +39,8 @@ episode's seed.
 images(pixel=0.002) gives what a camera above the board sees, for agents that learn from pixels:
 uint8 [num_envs, 4, height, width] (MazeEnv: [4, height, width]), planes walls, holes, goals and
 the marble (255 where each is), row 0 along the board's +y edge, at pixel metres a side; the
-marble is where the camera's frame, as the observation model delivers it, has it.
+marble is where the camera's frame, as the observation model delivers it, has it. With
+render_mode="rgb_array", render() draws those planes in colour, uint8 [height, width, 3].
 """
 import numpy as np
 
@@ -52,8 +54,13 @@ try:  # the spaces and base classes of Gymnasium where it is installed, the same
     import gymnasium
     from gymnasium.spaces import Box
     _EnvBase, _VectorEnvBase = gymnasium.Env, gymnasium.vector.VectorEnv
+    # (Gymnasium 1.x's wrappers read how ended episodes start again from the metadata; 0.29
+    # has no such key, and its layout is the one given.)
+    _SAME_STEP = getattr(gymnasium.vector, "AutoresetMode", None)
+    _SAME_STEP = _SAME_STEP.SAME_STEP if _SAME_STEP else "SameStep"
 except ImportError:
     gymnasium = None
+    _SAME_STEP = "SameStep"
 
     class Box:
         """A box of R^n, as gymnasium.spaces.Box describes one."""
@@ -77,7 +84,45 @@ except ImportError:
             x = np.asarray(x)
             return x.shape == self.shape and bool(np.all(x >= self.low) and np.all(x <= self.high))
 
-    _EnvBase = _VectorEnvBase = object
+    class _EnvBase:
+        """What gymnasium.Env gives an environment: np_random, seeded by reset(seed=...) as
+        Gymnasium seeds it (PCG64 from the seed), unwrapped, spec, and closing on leaving a
+        with block."""
+
+        metadata = {"render_modes": []}
+        render_mode = None
+        spec = None
+        _np_random = None
+
+        def reset(self, *, seed=None, options=None):
+            if seed is not None:
+                self._np_random = np.random.default_rng(seed)
+
+        @property
+        def np_random(self):
+            if self._np_random is None:
+                self._np_random = np.random.default_rng()
+            return self._np_random
+
+        @np_random.setter
+        def np_random(self, value):
+            self._np_random = value
+
+        @property
+        def unwrapped(self):
+            return self
+
+        def close(self):
+            pass
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *args):
+            self.close()
+            return False
+
+    _VectorEnvBase = object
 
 
 SENSOR_OPTIONS = ("delay_periods", "delay_jitter", "camera_rate", "position_noise",
@@ -100,6 +145,28 @@ def _no_options(options):
     if options:
         raise ValueError("reset: options: none are taken (the settings are the constructor's), "
                          "got %r" % (options,))
+
+
+def _render_mode(render_mode):
+    """The render mode, of those Gymnasium names, that these environments draw."""
+    if render_mode not in (None, "rgb_array"):
+        raise ValueError("render_mode: expected None or 'rgb_array', got %r" % (render_mode,))
+    return render_mode
+
+
+RENDER_PIXEL = 0.001  # metres a pixel side of render()'s pictures: 280 x 230 for the classic
+# render()'s colours (RGB): the board, and over it the holes, goals, walls and marble planes.
+_BOARD_COLOUR = (225, 190, 140)
+_PLANE_COLOURS = ((1, (25, 25, 25)), (2, (40, 160, 60)), (0, (110, 75, 40)), (3, (190, 190, 200)))
+
+
+def _frame(planes):
+    """An RGB picture, uint8 [height, width, 3], of one environment's image planes."""
+    frame = np.empty(planes.shape[1:] + (3,), np.uint8)
+    frame[...] = _BOARD_COLOUR
+    for plane, colour in _PLANE_COLOURS:
+        frame[planes[plane] > 0] = colour
+    return frame
 
 
 def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds, tilt_rates,
@@ -132,12 +199,14 @@ def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds
 class VectorMazeEnv(_VectorEnvBase):
     """num_envs environments stepped together in one C++ call, spread over num_threads."""
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "autoreset_mode": _SAME_STEP}
+    is_vector_env = True  # (how Gymnasium 0.29's wrappers tell a vector environment)
 
     def __init__(self, num_envs, maze="classic", preset="fast", control_rate=55.0,
                  max_episode_seconds=60.0, seed=0, randomize=None, tilt_rates=False,
                  num_threads=1, progress_reward=10.0, hole_penalty=1.0, goal_bonus=1.0,
-                 sets=None, observation=None):
+                 sets=None, observation=None, render_mode=None):
+        self.render_mode = _render_mode(render_mode)
         self._env = _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds,
                           tilt_rates, progress_reward, hole_penalty, goal_bonus, sets, randomize,
                           observation, seed)
@@ -152,6 +221,8 @@ class VectorMazeEnv(_VectorEnvBase):
         self.control_period = 1.0 / control_rate
         self.steps_per_period = self._env.steps_per_period
         self.step_length = self._env.step_length
+        self.metadata = dict(self.metadata, render_fps=float(control_rate))
+        self.closed = False
 
     def reset(self, seed=None, options=None):
         """seed: an integer, environment i's episodes drawn from (seed, i) from now on; or a list
@@ -184,11 +255,20 @@ class VectorMazeEnv(_VectorEnvBase):
             done = terminated | truncated
             info["final_observation"], info["_final_observation"] = final_observation, done
             info["final_info"], info["_final_info"] = final_info, done.copy()
+            # (The same under Gymnasium 1.x's names for its same-step autoreset.)
+            info["final_obs"], info["_final_obs"] = final_observation, done.copy()
         return obs, reward, terminated, truncated, info
 
     def images(self, pixel=0.002):
         """The top-down pictures of every environment: uint8 [num_envs, 4, height, width]."""
         return self._env.images(float(pixel))
+
+    def render(self):
+        """With render_mode="rgb_array", a tuple of each environment's picture, uint8 [height,
+        width, 3], as images() sees it; else None."""
+        if self.render_mode is None:
+            return None
+        return tuple(_frame(planes) for planes in self.images(RENDER_PIXEL))
 
     def simulated_time(self, i):
         """Simulated seconds of environment i since its creation (resets keep time going)."""
@@ -199,17 +279,19 @@ class VectorMazeEnv(_VectorEnvBase):
         return dict(line.split("=", 1) for line in self._env.params_text(i).splitlines())
 
     def close(self):
-        pass
+        self.closed = True
 
 
 class MazeEnv(_EnvBase):
     """One environment with Gymnasium's Env API."""
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"]}
 
     def __init__(self, maze="classic", preset="fast", control_rate=55.0, max_episode_seconds=60.0,
                  seed=0, randomize=None, tilt_rates=False, progress_reward=10.0,
-                 hole_penalty=1.0, goal_bonus=1.0, sets=None, observation=None):
+                 hole_penalty=1.0, goal_bonus=1.0, sets=None, observation=None,
+                 render_mode=None):
+        self.render_mode = _render_mode(render_mode)
         self._env = _make(1, 1, maze, preset, control_rate, max_episode_seconds, tilt_rates,
                           progress_reward, hole_penalty, goal_bonus, sets, randomize, observation,
                           seed)
@@ -217,11 +299,14 @@ class MazeEnv(_EnvBase):
         self.action_space = Box(-1.0, 1.0, (ACTION_SIZE,), np.float32)
         if seed is not None:
             self.action_space.seed(int(seed))
-        self.render_mode = None
+        self.metadata = dict(self.metadata, render_fps=float(control_rate))
 
     def reset(self, seed=None, options=None):
+        """seed: an integer, the episodes drawn from (seed, 0) from now on, and np_random
+        seeded as Gymnasium seeds it; or None, the episodes go on. options: none are taken."""
         _no_options(options)
         seed = _seed(seed, "reset: seed")
+        super().reset(seed=seed)
         if seed is not None:
             self.action_space.seed(seed)
         return self._env.reset(seed)[0], {}
@@ -238,7 +323,8 @@ class MazeEnv(_EnvBase):
         return self._env.images(float(pixel))[0]
 
     def render(self):
-        return None
-
-    def close(self):
-        pass
+        """With render_mode="rgb_array", the picture, uint8 [height, width, 3], as images()
+        sees it; else None."""
+        if self.render_mode is None:
+            return None
+        return _frame(self.images(RENDER_PIXEL))

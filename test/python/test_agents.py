@@ -101,6 +101,12 @@ class AgentsTest(unittest.TestCase):
         self.assertIsNone(final[2])
         self.assertEqual(list(info["final_info"]), [{}, None, None])
         np.testing.assert_array_equal(info["_final_info"], [True, False, False])
+        # Gymnasium 1.x's names for the same (its wrappers read the mode from the metadata).
+        self.assertIs(info["final_obs"], final)
+        np.testing.assert_array_equal(info["_final_obs"], [True, False, False])
+        self.assertEqual(getattr(envs.metadata["autoreset_mode"], "value",
+                                 envs.metadata["autoreset_mode"]), "SameStep")
+        self.assertTrue(envs.is_vector_env)
 
     def test_a_single_env_returns_the_last_observation_of_its_episode(self):
         single, vector = agents.MazeEnv(maze=HOLE_BESIDE), agents.VectorMazeEnv(1, maze=HOLE_BESIDE)
@@ -318,6 +324,51 @@ class AgentsTest(unittest.TestCase):
         self.assertEqual(single.shape, (4, height, width))
         with self.assertRaisesRegex(ValueError, "raster pixel"):
             envs.images(0)
+
+    def test_reset_seeds_np_random_as_gymnasium_does(self):
+        env = agents.MazeEnv()
+        env.reset(seed=7)
+        # Gymnasium's seeding.np_random(seed): PCG64 from a SeedSequence of the seed.
+        expected = np.random.Generator(np.random.PCG64(np.random.SeedSequence(7)))
+        np.testing.assert_array_equal(env.np_random.integers(2**62, size=4),
+                                      expected.integers(2**62, size=4))
+        generator = env.np_random
+        env.reset()  # no seed: the generator goes on
+        self.assertIs(env.np_random, generator)
+        self.assertIs(env.unwrapped, env)
+
+    def test_render_colours_the_images_planes(self):
+        self.assertIsNone(agents.MazeEnv().render())
+        env = agents.MazeEnv(render_mode="rgb_array", seed=2, randomize={"start": "random"})
+        env.reset()
+        for _ in range(10):
+            env.step(np.array([0.4, -0.2]))
+        frame = env.render()
+        planes = env.images(agents.RENDER_PIXEL) > 0
+        self.assertEqual(frame.shape, planes.shape[1:] + (3,))
+        self.assertEqual(frame.dtype, np.uint8)
+        walls, holes, goals, marble = planes
+        self.assertTrue(marble.any() and holes.any() and goals.any())
+        colours = [frame[plane & ~marble] for plane in (walls, holes, goals)] + [frame[marble]]
+        colours.append(frame[~planes.any(axis=0)])  # the board
+        for pixels in colours:  # each plane in one colour, none shared with another
+            self.assertEqual(len(np.unique(pixels, axis=0)), 1)
+        self.assertEqual(len(np.unique([c[0] for c in colours], axis=0)), 5)
+        self.assertEqual(env.metadata["render_fps"], 55.0)
+        envs = agents.VectorMazeEnv(3, render_mode="rgb_array")
+        envs.reset(seed=1)
+        frames = envs.render()
+        self.assertEqual(len(frames), 3)
+        np.testing.assert_array_equal(frames[0], agents.MazeEnv(render_mode="rgb_array").render())
+        with self.assertRaisesRegex(ValueError, "render_mode: expected None or 'rgb_array', got "
+                                                "'human'"):
+            agents.MazeEnv(render_mode="human")
+
+    @unittest.skipUnless(agents.gymnasium, "gymnasium is not installed")
+    def test_gymnasiums_own_checker_passes(self):
+        from gymnasium.utils.env_checker import check_env
+        for render_mode in (None, "rgb_array"):
+            check_env(agents.MazeEnv(render_mode=render_mode))
 
     def test_bad_arguments_are_refused_naming_them(self):
         with self.assertRaisesRegex(ValueError, "observation: 'latency'"):

@@ -328,3 +328,10 @@ class MazeEnv(_EnvBase):
         if self.render_mode is None:
             return None
         return _frame(self.images(RENDER_PIXEL))
+
+
+ENV_ID = "marble_maze/Maze-v0"
+if gymnasium is not None and ENV_ID not in gymnasium.registry:
+    # gymnasium.make(ENV_ID, ...) gives a MazeEnv, make_vec(ENV_ID, n) (1.x) a VectorMazeEnv;
+    # "marble_maze.agents:" before the id imports this module first.
+    gymnasium.register(ENV_ID, entry_point=MazeEnv, vector_entry_point=VectorMazeEnv)

@@ -365,10 +365,22 @@ class AgentsTest(unittest.TestCase):
             agents.MazeEnv(render_mode="human")
 
     @unittest.skipUnless(agents.gymnasium, "gymnasium is not installed")
-    def test_gymnasiums_own_checker_passes(self):
+    def test_gymnasium_checks_and_makes_them(self):
+        import gymnasium
         from gymnasium.utils.env_checker import check_env
         for render_mode in (None, "rgb_array"):
             check_env(agents.MazeEnv(render_mode=render_mode))
+        env = gymnasium.make(agents.ENV_ID, maze="generated:seed=7,cells=5x5")
+        self.assertIsInstance(env.unwrapped, agents.MazeEnv)
+        obs, _ = env.reset(seed=1)
+        np.testing.assert_array_equal(obs, agents.MazeEnv(maze="generated:seed=7,cells=5x5")
+                                      .reset(seed=1)[0])
+        if gymnasium.__version__.startswith("0."):
+            return  # (0.29's make_vec is experimental, and passes arguments of its own)
+        envs = gymnasium.make_vec(agents.ENV_ID, num_envs=4,
+                                  vectorization_mode="vector_entry_point")
+        self.assertIsInstance(envs.unwrapped, agents.VectorMazeEnv)
+        self.assertEqual(envs.reset(seed=1)[0].shape, (4, agents.OBSERVATION_SIZE))
 
     def test_bad_arguments_are_refused_naming_them(self):
         with self.assertRaisesRegex(ValueError, "observation: 'latency'"):

@@ -154,7 +154,8 @@ def _render_mode(render_mode):
     return render_mode
 
 
-RENDER_PIXEL = 0.001  # metres a pixel side of render()'s pictures: 280 x 230 for the classic
+RENDER_PIXEL = 0.001  # metres a pixel side of render()'s pictures (276 x 231 for the classic)
+
 # render()'s colours (RGB): the board, and over it the holes, goals, walls and marble planes.
 _BOARD_COLOUR = (225, 190, 140)
 _PLANE_COLOURS = ((1, (25, 25, 25)), (2, (40, 160, 60)), (0, (110, 75, 40)), (3, (190, 190, 200)))

@@ -404,8 +404,6 @@ class AgentsTest(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    if any(arg.startswith("--gtest_output=xml:") for arg in sys.argv):
-        import rosunit
-        rosunit.unitrun("marble_maze", "test_agents", AgentsTest)
-    else:
-        unittest.main()
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    import xml_results
+    xml_results.main()

@@ -85,9 +85,9 @@ except ImportError:
             return x.shape == self.shape and bool(np.all(x >= self.low) and np.all(x <= self.high))
 
     class _EnvBase:
-        """What gymnasium.Env gives an environment: np_random, seeded by reset(seed=...) as
-        Gymnasium seeds it (PCG64 from the seed), unwrapped, spec, and closing on leaving a
-        with block."""
+        """What gymnasium.Env and gymnasium.vector.VectorEnv give an environment: np_random,
+        seeded by reset(seed=...) as Gymnasium seeds it (PCG64 from the seed), unwrapped, spec,
+        and closing on leaving a with block."""
 
         metadata = {"render_modes": []}
         render_mode = None
@@ -112,7 +112,7 @@ except ImportError:
         def unwrapped(self):
             return self
 
-        def close(self):
+        def close(self, **kwargs):
             pass
 
         def __enter__(self):
@@ -122,7 +122,7 @@ except ImportError:
             self.close()
             return False
 
-    _VectorEnvBase = object
+    _VectorEnvBase = _EnvBase
 
 
 SENSOR_OPTIONS = ("delay_periods", "delay_jitter", "camera_rate", "position_noise",
@@ -257,7 +257,7 @@ class VectorMazeEnv(_VectorEnvBase):
             info["final_observation"], info["_final_observation"] = final_observation, done
             info["final_info"], info["_final_info"] = final_info, done.copy()
             # (The same under Gymnasium 1.x's names for its same-step autoreset.)
-            info["final_obs"], info["_final_obs"] = final_observation, done.copy()
+            info["final_obs"], info["_final_obs"] = final_observation.copy(), done.copy()
         return obs, reward, terminated, truncated, info
 
     def images(self, pixel=0.002):
@@ -279,7 +279,7 @@ class VectorMazeEnv(_VectorEnvBase):
         """Environment i's physics in force, {key: text}, as simulate --set takes them."""
         return dict(line.split("=", 1) for line in self._env.params_text(i).splitlines())
 
-    def close(self):
+    def close(self, **kwargs):
         self.closed = True
 
 
@@ -335,4 +335,5 @@ ENV_ID = "marble_maze/Maze-v0"
 if gymnasium is not None and ENV_ID not in gymnasium.registry:
     # gymnasium.make(ENV_ID, ...) gives a MazeEnv, make_vec(ENV_ID, n) (1.x) a VectorMazeEnv;
     # "marble_maze.agents:" before the id imports this module first.
-    gymnasium.register(ENV_ID, entry_point=MazeEnv, vector_entry_point=VectorMazeEnv)
+    gymnasium.register(ENV_ID, entry_point="marble_maze.agents:MazeEnv",
+                       vector_entry_point="marble_maze.agents:VectorMazeEnv")

@@ -101,8 +101,11 @@ class AgentsTest(unittest.TestCase):
         self.assertIsNone(final[2])
         self.assertEqual(list(info["final_info"]), [{}, None, None])
         np.testing.assert_array_equal(info["_final_info"], [True, False, False])
-        # Gymnasium 1.x's names for the same (its wrappers read the mode from the metadata).
-        self.assertIs(info["final_obs"], final)
+        # Gymnasium 1.x's names for the same (its wrappers read the mode from the metadata), in
+        # an array of its own: a wrapper that transforms one in place leaves the other.
+        self.assertIsNot(info["final_obs"], final)
+        self.assertEqual([None if o is None else o.tolist() for o in info["final_obs"]],
+                         [final[0].tolist(), None, None])
         np.testing.assert_array_equal(info["_final_obs"], [True, False, False])
         self.assertEqual(getattr(envs.metadata["autoreset_mode"], "value",
                                  envs.metadata["autoreset_mode"]), "SameStep")
@@ -355,11 +358,16 @@ class AgentsTest(unittest.TestCase):
             self.assertEqual(len(np.unique(pixels, axis=0)), 1)
         self.assertEqual(len(np.unique([c[0] for c in colours], axis=0)), 5)
         self.assertEqual(env.metadata["render_fps"], 55.0)
-        envs = agents.VectorMazeEnv(3, render_mode="rgb_array")
-        envs.reset(seed=1)
+        seeds = [3, 4, 5]  # each environment's own start: each picture its own
+        envs = agents.VectorMazeEnv(3, render_mode="rgb_array", randomize={"start": "random"})
+        envs.reset(seed=seeds)
         frames = envs.render()
         self.assertEqual(len(frames), 3)
-        np.testing.assert_array_equal(frames[0], agents.MazeEnv(render_mode="rgb_array").render())
+        for seed, frame in zip(seeds, frames):
+            single = agents.MazeEnv(render_mode="rgb_array", randomize={"start": "random"})
+            single.reset(seed=seed)
+            np.testing.assert_array_equal(frame, single.render())
+        self.assertFalse(np.array_equal(frames[0], frames[1]))
         with self.assertRaisesRegex(ValueError, "render_mode: expected None or 'rgb_array', got "
                                                 "'human'"):
             agents.MazeEnv(render_mode="human")
@@ -370,6 +378,7 @@ class AgentsTest(unittest.TestCase):
         from gymnasium.utils.env_checker import check_env
         for render_mode in (None, "rgb_array"):
             check_env(agents.MazeEnv(render_mode=render_mode))
+        gymnasium.spec(agents.ENV_ID).to_json()  # (entry points that a spec can be saved with)
         env = gymnasium.make(agents.ENV_ID, maze="generated:seed=7,cells=5x5")
         self.assertIsInstance(env.unwrapped, agents.MazeEnv)
         obs, _ = env.reset(seed=1)
@@ -379,6 +388,7 @@ class AgentsTest(unittest.TestCase):
             return  # (0.29's make_vec is experimental, and passes arguments of its own)
         envs = gymnasium.make_vec(agents.ENV_ID, num_envs=4,
                                   vectorization_mode="vector_entry_point")
+        self.assertIs(envs.metadata["autoreset_mode"], gymnasium.vector.AutoresetMode.SAME_STEP)
         self.assertIsInstance(envs.unwrapped, agents.VectorMazeEnv)
         self.assertEqual(envs.reset(seed=1)[0].shape, (4, agents.OBSERVATION_SIZE))
 

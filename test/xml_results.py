@@ -9,12 +9,25 @@ it so); without the option, unittest's own main.
         xml_results.main()
 """
 import os
+import re
 import sys
 import time
 import unittest
 import xml.etree.ElementTree as ET
 
 OPTION = "--gtest_output=xml:"
+# What XML 1.0 cannot hold (the colour codes of a launch's output in a message, say): left out.
+_NOT_XML = re.compile("[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def _names(test):
+    """The class's name and the case's of a test, a subtest (the case's name with its
+    parameters) or a class's or module's set-up error (no class; its description)."""
+    case = getattr(test, "test_case", test)
+    if not isinstance(case, unittest.TestCase):
+        return "", test.id()
+    classname = "%s.%s" % (type(case).__module__, type(case).__qualname__)
+    return classname, test.id()[len(classname) + 1:]
 
 
 class _Recorder(unittest.TextTestResult):
@@ -22,11 +35,16 @@ class _Recorder(unittest.TextTestResult):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        self.cases = []  # (the case's id, seconds, None or failure, error, skipped, text)
+        # Each case's (class, name, seconds, outcome: None, failure, error or skipped, text), by
+        # its id: a case that failed and then erred in its tearDown is one case that failed.
+        self.cases = {}
         self._began = time.perf_counter()
 
     def _keep(self, test, outcome=None, text=""):
-        self.cases.append((test.id(), time.perf_counter() - self._began, outcome, text))
+        kept = self.cases.get(test.id())
+        if kept is None or kept[3] is None:
+            self.cases[test.id()] = (*_names(test), time.perf_counter() - self._began, outcome,
+                                     text)
 
     def startTest(self, test):
         self._began = time.perf_counter()
@@ -66,16 +84,16 @@ class _Recorder(unittest.TextTestResult):
 
 def write(path, name, cases, seconds):
     """The cases, as _Recorder keeps them, as a JUnit XML test suite in `path`."""
-    count = {kind: sum(1 for case in cases if case[2] == kind)
+    count = {kind: sum(1 for case in cases if case[3] == kind)
              for kind in ("failure", "error", "skipped")}
     suite = ET.Element("testsuite", name=name, tests=str(len(cases)),
                        failures=str(count["failure"]), errors=str(count["error"]),
                        skipped=str(count["skipped"]), time="%.3f" % seconds)
-    for case_id, case_seconds, outcome, text in cases:
-        classname, _, case_name = case_id.rpartition(".")
+    for classname, case_name, case_seconds, outcome, text in cases:
         case = ET.SubElement(suite, "testcase", classname=classname, name=case_name,
                              time="%.4f" % case_seconds)
         if outcome:
+            text = _NOT_XML.sub("", text)
             lines = text.strip().splitlines()
             ET.SubElement(case, outcome, message=lines[-1] if lines else "").text = text
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
@@ -92,5 +110,5 @@ def main():
     began = time.perf_counter()
     result = unittest.TextTestRunner(verbosity=2, resultclass=_Recorder).run(cases)
     name = os.path.splitext(os.path.basename(sys.argv[0]))[0]
-    write(paths[-1], name, result.cases, time.perf_counter() - began)
+    write(paths[-1], name, list(result.cases.values()), time.perf_counter() - began)
     sys.exit(0 if result.wasSuccessful() else 1)

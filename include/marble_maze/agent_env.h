@@ -23,11 +23,11 @@ struct AgentEnvOptions {
   std::string preset = "fast";   ///< the physics' preset (params.h), before `sets`
   std::vector<std::pair<std::string, std::string>> sets;  ///< keys over the preset, as --set
   double control_rate = 55.0;                             ///< Hz: one action a period
-  double max_episode_seconds = 60;                        ///< then the episode is truncated
-  bool tilt_rates = false;        ///< actions are tilt rates (of tilt_rate_limit), not angles
-  double progress_reward = 10.0;  ///< per metre nearer the goal along the route
-  double hole_penalty = 1.0;      ///< on falling into a hole or off the board
-  double goal_bonus = 1.0;        ///< on reaching the goal
+  double max_episode_seconds = 60;  ///< then the episode is truncated (infinity: never)
+  bool tilt_rates = false;          ///< actions are tilt rates (of tilt_rate_limit), not angles
+  double progress_reward = 10.0;    ///< per metre nearer the goal along the route
+  double hole_penalty = 1.0;        ///< on falling into a hole or off the board
+  double goal_bonus = 1.0;          ///< on reaching the goal
   /// Per episode: the marble on a random open column with a route to a goal, not the start.
   bool random_start = false;
   /// Per episode: each key drawn uniformly from [low, high] (keys of the key table: marble_radius,
@@ -91,7 +91,8 @@ class AgentEnv {
     bool truncated = false;   ///< the episode's time ran out
   };
   /// One control period under `action` (roll, pitch in [-1, 1], scaled to the tilt limit, or
-  /// to the tilt rate limit with tilt_rates; clipped to [-1, 1]).
+  /// to the tilt rate limit with tilt_rates; clipped to [-1, 1]). Throws ParamError, changing
+  /// nothing, on a NaN.
   Outcome step(const double* action);
   void observe(float* out) const;
   /// The camera's values as they are, before the sensors: x, y, vx, vy, dx, dy.
@@ -113,8 +114,8 @@ class AgentEnv {
   std::shared_ptr<const RouteField> route_;
   AgentEnvOptions options_;
   int steps_per_period_ = 1;
-  int periods_ = 0;
-  int max_periods_ = 0;
+  std::int64_t periods_ = 0;
+  std::int64_t max_periods_ = 0;  // for a max_episode_seconds of infinity, the most there is
   double target_roll_ = 0, target_pitch_ = 0;
   double distance_ = 0;  // along the route, at the last period's end
   Params nominal_;       // the scene's physics, which the ranges vary about
@@ -126,7 +127,8 @@ class AgentEnv {
 
 /// The scene an environment runs: the maze with the preset and the sets over its physics, its
 /// step shortened to divide the control period. Throws ParamError or MazeFileError naming what
-/// is wrong.
+/// is wrong in `options`: a period of more than kMostStepsPerCommand steps, an episode shorter
+/// than a period, a weight of the reward that is not finite, a range that cannot be drawn from.
 Scene agentScene(const AgentEnvOptions& options);
 
 /// N environments stepped together, as Gymnasium's vector environments are: an episode that
@@ -146,10 +148,12 @@ class VectorAgentEnv {
   void reset(float* obs, const std::vector<std::optional<std::uint64_t>>& seeds);
   /// One control period of every environment under `actions` (N x kActionSize): fills `obs`,
   /// `rewards`, `terminated` and `truncated` (N each); where an episode ended, `final_obs` gets
-  /// its last observation and `obs` the new episode's first.
+  /// its last observation and `obs` the new episode's first. Throws ParamError, changing
+  /// nothing, when an action holds a NaN.
   void step(const double* actions, float* obs, double* rewards, std::uint8_t* terminated,
             std::uint8_t* truncated, float* final_obs);
-  const AgentEnv& env(int i) const { return *envs_[static_cast<std::size_t>(i)]; }
+  /// Environment i; throws std::out_of_range naming i unless 0 <= i < size().
+  const AgentEnv& env(int i) const;
   ~VectorAgentEnv();
   VectorAgentEnv(const VectorAgentEnv&) = delete;
   VectorAgentEnv& operator=(const VectorAgentEnv&) = delete;

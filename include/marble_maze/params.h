@@ -2,6 +2,7 @@
 // --set KEY=VALUE and the ROS node's private parameters.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -108,6 +109,13 @@ Params paramsFromText(const std::string& text, Params base = Params());
 /// whole steps (within 1e-9 of one), else the longest shorter one that does, so that every
 /// period is honoured exactly (55 Hz at 1 ms: 19 steps of 0.957 ms; at 5 ms: 4 of 4.545 ms).
 double stepDividing(double period, double step);
+
+/// The most one command (an agent's action, a lockstep tilt, a `step` call) may take on, in steps
+/// and in substeps: more would hold its caller up for seconds, or for ever.
+constexpr std::uint32_t kMostStepsPerCommand = 10000000;
+/// Why `steps` steps of `params` are more than one command may take on, or "". `asked` says what
+/// asks for them, from the argument's name on.
+std::string whyTooMuchWork(double steps, const Params& params, const std::string& asked);
 
 /// "NAME: VALUE is out of range [MIN, MAX]", each number exact (a value just beyond a bound must
 /// not read as the bound).

@@ -9,14 +9,15 @@ master and no rospy needed.
 Each environment is a session of the core stepped one control period per action (55 Hz by
 default, honoured exactly: the preset's step is shortened to the largest that divides the
 period). An action is the target roll and pitch as fractions of the tilt limit (or, with
-tilt_rates=True, tilt rates as fractions of the rate limit), clipped to [-1, 1].
+tilt_rates=True, tilt rates as fractions of the rate limit), clipped to [-1, 1]; a NaN is
+refused.
 
 The observation (float32, 10 values, SI units in the board frame): the marble's x, y; its
 velocity vx, vy; the board's roll, pitch; the target roll, pitch; the next waypoint of the route
 to the goal, dx, dy from the marble. The reward: progress_reward per metre nearer the goal along
 the route planner's path, -hole_penalty on a hole or off the board, +goal_bonus at the goal.
 An episode is terminated in a hole, off the board or at the goal, and truncated after
-max_episode_seconds. Finished episodes start again at once, as Gymnasium 0.29's vector
+max_episode_seconds (infinity: never). Finished episodes start again at once, as Gymnasium 0.29's vector
 environments do; their last observation is in info["final_observation"], their last info in
 info["final_info"] (the observation also in info["final_obs"], Gymnasium 1.x's same-step
 autoreset).
@@ -42,6 +43,8 @@ the marble (255 where each is), row 0 along the board's +y edge, at pixel metres
 marble is where the camera's frame, as the observation model delivers it, has it. With
 render_mode="rgb_array", render() draws those planes in colour, uint8 [height, width, 3].
 """
+import operator
+
 import numpy as np
 
 from marble_maze import _agents
@@ -140,6 +143,32 @@ def _seed(seed, name):
     return int(seed)
 
 
+def _whole(value, name):
+    """An integer argument as it is, or a ValueError naming it."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError("%s: expected a whole number, got %r" % (name, value))
+    try:
+        return operator.index(value)
+    except TypeError:
+        raise ValueError("%s: expected a whole number, got %r" % (name, value)) from None
+
+
+def _number(value, name):
+    """A real argument as a float, or a ValueError naming it."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError("%s: expected a number, got %r" % (name, value)) from None
+
+
+def _numbers(values, name):
+    """An array argument as float64, or a ValueError naming it."""
+    try:
+        return np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError("%s: expected numbers, got %r" % (name, values)) from None
+
+
 def _no_options(options):
     """reset's options, which Gymnasium's API allows and these environments take none of."""
     if options:
@@ -175,26 +204,44 @@ def _make(num_envs, num_threads, maze, preset, control_rate, max_episode_seconds
     o = _agents.Options()
     o.seed = _seed(seed, "seed") or 0
     o.maze, o.preset = str(maze), str(preset)
-    o.control_rate, o.max_episode_seconds = float(control_rate), float(max_episode_seconds)
+    o.control_rate = _number(control_rate, "control_rate")
+    o.max_episode_seconds = _number(max_episode_seconds, "max_episode_seconds")
     o.tilt_rates = bool(tilt_rates)
-    o.progress_reward, o.hole_penalty = float(progress_reward), float(hole_penalty)
-    o.goal_bonus = float(goal_bonus)
+    o.progress_reward = _number(progress_reward, "progress_reward")
+    o.hole_penalty = _number(hole_penalty, "hole_penalty")
+    o.goal_bonus = _number(goal_bonus, "goal_bonus")
     o.sets = [(str(k), str(v)) for k, v in (sets or {}).items()]
     randomize = dict(randomize or {})
     start = randomize.pop("start", "start")
     if start not in ("start", "random"):
         raise ValueError("randomize: start: expected 'start' or 'random', got %r" % (start,))
     o.random_start = start == "random"
-    o.ranges = [_agents.Range(str(k), float(low), float(high))
-                for k, (low, high) in randomize.items()]
+    o.ranges = [_range(str(key), bounds) for key, bounds in randomize.items()]
     sensors = _agents.SensorOptions()
     for key, value in (observation or {}).items():
         if key not in SENSOR_OPTIONS:
             raise ValueError("observation: %r: expected one of %s"
                              % (key, ", ".join(SENSOR_OPTIONS)))
-        setattr(sensors, key, int(value) if key.startswith("delay") else float(value))
+        name = "observation: " + key
+        if key.startswith("delay"):
+            value = _whole(value, name)
+            if not -2**31 <= value < 2**31:  # (what the core's int holds; it checks the range)
+                raise ValueError("%s: %d is out of range" % (name, value))
+        else:
+            value = _number(value, name)
+        setattr(sensors, key, value)
     o.sensors = sensors
-    return _agents.VectorEnv(int(num_envs), o, int(num_threads))
+    return _agents.VectorEnv(_whole(num_envs, "num_envs"), o, _whole(num_threads, "num_threads"))
+
+
+def _range(key, bounds):
+    """randomize's range of a key, (low, high)."""
+    name = "randomize: " + key
+    try:
+        low, high = bounds
+    except (TypeError, ValueError):
+        raise ValueError("%s: expected (low, high), got %r" % (name, bounds)) from None
+    return _agents.Range(key, _number(low, name), _number(high, name))
 
 
 class VectorMazeEnv(_VectorEnvBase):
@@ -243,8 +290,9 @@ class VectorMazeEnv(_VectorEnvBase):
         return self._env.reset(seed), {}
 
     def step(self, actions):
+        """actions: [num_envs, 2] numbers, clipped to [-1, 1] (a NaN is refused)."""
         obs, reward, terminated, truncated, final, ended = self._env.step(
-            np.asarray(actions, dtype=np.float64).reshape(self.num_envs, ACTION_SIZE))
+            _numbers(actions, "actions"))
         info = {}
         if ended:
             # (Gymnasium 0.29's layout: object arrays, None where the episode goes on.)
@@ -313,8 +361,13 @@ class MazeEnv(_EnvBase):
         return self._env.reset(seed)[0], {}
 
     def step(self, action):
+        """action: roll and pitch, clipped to [-1, 1] (a NaN is refused)."""
+        action = _numbers(action, "action")
+        if action.shape != (ACTION_SIZE,) or np.isnan(action).any():
+            raise ValueError("action: expected %d numbers (clipped to [-1, 1]), got %r"
+                             % (ACTION_SIZE, action))
         obs, reward, terminated, truncated, final, ended = self._env.step(
-            np.asarray(action, dtype=np.float64).reshape(1, ACTION_SIZE))
+            action.reshape(1, ACTION_SIZE))
         # (Gymnasium's Env is reset by its caller: the episode's last observation is returned.)
         return (final[0] if ended else obs[0]), float(reward[0]), bool(terminated[0]), \
             bool(truncated[0]), {}

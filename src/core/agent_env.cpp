@@ -57,6 +57,37 @@ double RouteField::distance(const Vec2& at) const {
   return (waypoint - at).norm() + rest;
 }
 
+namespace {
+
+/// Throws ParamError unless each key of `ranges` can be drawn per episode from its range over
+/// `params`: a number, within the key's bounds at both ends, and not the step, which the control
+/// period fixes.
+void checkRanges(const std::vector<AgentEnvOptions::Range>& ranges, const Params& params) {
+  for (const AgentEnvOptions::Range& r : ranges) {
+    if (r.key == "step")
+      throw ParamError(
+          "step: cannot be drawn per episode: the step divides the control period "
+          "(set it with sets)");
+    const std::vector<ParamInfo>& infos = paramInfos();
+    const auto info = std::find_if(infos.begin(), infos.end(),
+                                   [&](const ParamInfo& i) { return i.key == r.key; });
+    if (info != infos.end() &&
+        (info->type == ParamInfo::Type::Whole || info->type == ParamInfo::Type::Choice))
+      throw ParamError(r.key + ": cannot be drawn from a range: it takes " +
+                       (info->type == ParamInfo::Type::Whole ? "whole numbers" : "names") +
+                       " (set it with sets)");
+    if (!(r.low <= r.high))
+      throw ParamError(r.key + ": expected a range [low, high] with low <= high, got [" +
+                       exactText(r.low) + ", " + exactText(r.high) + "]");
+    Params probe = params;
+    setParam(probe, r.key, exactText(r.low));
+    setParam(probe, r.key, exactText(r.high));
+    validate(probe);
+  }
+}
+
+}  // namespace
+
 Scene agentScene(const AgentEnvOptions& options) {
   if (!(options.control_rate > 0 && options.control_rate <= 1e4))
     throw ParamError("control_rate: expected a rate in (0, 10000] Hz");
@@ -65,8 +96,26 @@ Scene agentScene(const AgentEnvOptions& options) {
   for (const auto& [key, value] : options.sets) overrideParam(&scene, key, value);
   // Exact control periods: the step shortened to the largest that divides the period (55 Hz at
   // 5 ms: four steps of 4.545 ms), so that every action acts for exactly its period.
-  scene.params.step = stepDividing(1.0 / options.control_rate, scene.params.step);
+  const double period = 1.0 / options.control_rate;
+  scene.params.step = stepDividing(period, scene.params.step);
   validate(scene.params);
+  const std::string why =
+      whyTooMuchWork(period / scene.params.step, scene.params,
+                     "control_rate: " + exactText(options.control_rate) + " Hz at a step of " +
+                         exactText(scene.params.step) + " s makes");
+  if (!why.empty()) throw ParamError(why);
+  // At least one period (infinite: never truncated).
+  if (!(std::round(options.max_episode_seconds * options.control_rate) >= 1))
+    throw ParamError("max_episode_seconds: expected at least one control period (" +
+                     exactText(1 / options.control_rate) + " s), got " +
+                     exactText(options.max_episode_seconds));
+  for (const auto& [key, weight] :
+       {std::pair<const char*, double>{"progress_reward", options.progress_reward},
+        {"hole_penalty", options.hole_penalty},
+        {"goal_bonus", options.goal_bonus}})
+    if (!std::isfinite(weight))
+      throw ParamError(std::string(key) + ": expected a finite number, got " + exactText(weight));
+  checkRanges(options.ranges, scene.params);
   return scene;
 }
 
@@ -79,7 +128,9 @@ AgentEnv::AgentEnv(const Scene& scene, std::shared_ptr<const RouteField> route,
       seed_(options.seed),
       sensors_(options.sensors, options.control_rate) {
   steps_per_period_ = static_cast<int>(std::llround(1.0 / options.control_rate / step()));
-  max_periods_ = static_cast<int>(std::llround(options.max_episode_seconds * options.control_rate));
+  const double periods = std::round(options.max_episode_seconds * options.control_rate);
+  max_periods_ = periods < 0x1p62 ? static_cast<std::int64_t>(periods)
+                                  : std::numeric_limits<std::int64_t>::max();
   reset();
 }
 
@@ -113,10 +164,26 @@ void AgentEnv::reset() {
   seen_ = sensors_.restart(truth(), &random_);
 }
 
+namespace {
+
+/// The first of `count` values that is NaN, or -1. An action beyond [-1, 1], an infinite one
+/// too, is clipped to it; a NaN gives no direction to tilt, and is refused.
+int firstNaN(const double* values, int count) {
+  for (int k = 0; k < count; ++k)
+    if (std::isnan(values[k])) return k;
+  return -1;
+}
+
+const char* const kNotANumber = ": expected a number (clipped to [-1, 1]), got nan";
+
+}  // namespace
+
 AgentEnv::Outcome AgentEnv::step(const double* action) {
+  if (const int k = firstNaN(action, kActionSize); k >= 0)
+    throw ParamError("action[" + std::to_string(k) + "]" + kNotANumber);
   const Params& params = session_.simulation().params();
-  const double a0 = std::clamp(std::isfinite(action[0]) ? action[0] : 0.0, -1.0, 1.0);
-  const double a1 = std::clamp(std::isfinite(action[1]) ? action[1] : 0.0, -1.0, 1.0);
+  const double a0 = std::clamp(action[0], -1.0, 1.0);
+  const double a1 = std::clamp(action[1], -1.0, 1.0);
   TiltCommand command;
   command.step = session_.steps();
   if (options_.tilt_rates) {
@@ -282,14 +349,6 @@ VectorAgentEnv::VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int
   if (num_threads < 1) throw ParamError("num_threads: expected at least 1");
   const Scene scene = agentScene(options);
   const auto route = std::make_shared<const RouteField>(scene.maze, scene.params.marble_radius);
-  // Each key's range checked once, at both ends, as the key table checks a value.
-  for (const AgentEnvOptions::Range& r : options.ranges) {
-    if (!(r.low <= r.high)) throw ParamError(r.key + ": the range's low end is above its high end");
-    Params probe = scene.params;
-    setParam(probe, r.key, exactText(r.low));
-    setParam(probe, r.key, exactText(r.high));
-    validate(probe);
-  }
   for (int i = 0; i < num_envs; ++i) {
     envs_.push_back(std::make_unique<AgentEnv>(scene, route, options));
     envs_.back()->seed(options.seed, static_cast<std::uint64_t>(i));
@@ -301,6 +360,13 @@ VectorAgentEnv::VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int
 }
 
 VectorAgentEnv::~VectorAgentEnv() = default;
+
+const AgentEnv& VectorAgentEnv::env(int i) const {
+  if (i < 0 || i >= size())
+    throw std::out_of_range("environment " + std::to_string(i) + ": expected 0 to " +
+                            std::to_string(size() - 1));
+  return *envs_[static_cast<std::size_t>(i)];
+}
 
 void VectorAgentEnv::forEachSlice(const std::function<void(int, int)>& work) {
   if (pool_)
@@ -346,6 +412,10 @@ void VectorAgentEnv::reset(float* obs, const std::vector<std::optional<std::uint
 
 void VectorAgentEnv::step(const double* actions, float* obs, double* rewards,
                           std::uint8_t* terminated, std::uint8_t* truncated, float* final_obs) {
+  // (Checked before any environment moves: a refused call changes nothing.)
+  if (const int k = firstNaN(actions, size() * AgentEnv::kActionSize); k >= 0)
+    throw ParamError("actions[" + std::to_string(k / AgentEnv::kActionSize) + "][" +
+                     std::to_string(k % AgentEnv::kActionSize) + "]" + kNotANumber);
   forEachSlice([&](int first, int last) {
     for (int i = first; i < last; ++i) {
       AgentEnv& env = *envs_[static_cast<std::size_t>(i)];

@@ -28,6 +28,15 @@ double stepDividing(double period, double step) {
   return period / std::ceil(period / step);
 }
 
+std::string whyTooMuchWork(double steps, const Params& params, const std::string& asked) {
+  const std::string most = std::to_string(kMostStepsPerCommand);
+  if (!(steps <= kMostStepsPerCommand)) return asked + " more than " + most + " steps a command";
+  if (!(steps * params.substeps <= kMostStepsPerCommand))
+    return asked + " (of " + std::to_string(params.substeps) + " substeps each) more than " + most +
+           " substeps a command";
+  return "";
+}
+
 std::string outOfRangeText(const std::string& name, double value, double min, double max) {
   return name + ": " + exactText(value) + " is out of range [" + exactText(min) + ", " +
          exactText(max) + "]";

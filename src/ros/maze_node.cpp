@@ -149,8 +149,8 @@ std::string MazeNode::resume() {
 
 std::string MazeNode::stepPaused(std::uint32_t steps, marble_maze::MarbleState* after) {
   if (!session_->paused()) return "steps: only while paused (the simulation runs): call pause";
-  std::string why = whyTooMuchWork(steps, session_->simulation().params(),
-                                   "steps: " + std::to_string(steps) + " steps are");
+  std::string why = mm::whyTooMuchWork(steps, session_->simulation().params(),
+                                       "steps: " + std::to_string(steps) + " steps are");
   if (!why.empty()) return why;
   runSteps(steps, time_->publishesEachStep());
   publishNow();

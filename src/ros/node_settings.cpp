@@ -160,19 +160,11 @@ NodeSettings readSettings(const ros::NodeHandle& pnh, mm::Scene* scene) {
   return s;
 }
 
-std::string whyTooMuchWork(double steps, const mm::Params& params, const std::string& asked) {
-  const std::string most = std::to_string(kMostStepsPerCommand);
-  if (steps > kMostStepsPerCommand) return asked + " more than " + most + " steps a command";
-  if (steps * params.substeps > kMostStepsPerCommand)
-    return asked + " (of " + std::to_string(params.substeps) + " substeps each) more than " + most +
-           " substeps a command";
-  return "";
-}
-
 std::string whyNotRunnable(const NodeSettings& settings, const mm::Params& params) {
   const std::string step = "step: " + mm::exactText(params.step) + " s makes ";
-  std::string why = whyTooMuchWork(settings.lockstep / params.step, params,
-                                   step + "~lockstep's " + mm::exactText(settings.lockstep) + " s");
+  std::string why =
+      mm::whyTooMuchWork(settings.lockstep / params.step, params,
+                         step + "~lockstep's " + mm::exactText(settings.lockstep) + " s");
   if (!why.empty()) return why;
   // Rates of simulated time: at most one message a step.
   const double per_second = 1.0 / params.step;

@@ -62,13 +62,6 @@ Frames readFrames(const ros::NodeHandle& pnh);
 /// The burst of tilt commands a node takes in at once (its subscribers' queues), and so the
 /// states and events it may publish in answer at once (its publishers' queues).
 constexpr std::uint32_t kCommandBurst = 1000;
-/// The most one command (a lockstep tilt, a `step` call) may take on, in steps and in substeps:
-/// more would hold the node up, its services unanswered, for seconds.
-constexpr std::uint32_t kMostStepsPerCommand = 10000000;
-/// Why `steps` steps of `params` are more than one command may take on, or "". `asked` says what
-/// asks for them, from the argument's name on.
-std::string whyTooMuchWork(double steps, const marble_maze::Params& params,
-                           const std::string& asked);
 /// Why the node cannot run `params` with these settings, or "": a lockstep period of more steps
 /// or substeps than a command may take, or a rate of messages of simulated time (~publish_rate,
 /// ~marker_rate) above one a step. Checked at start and when a maze is loaded or a value changed

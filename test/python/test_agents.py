@@ -407,10 +407,74 @@ class AgentsTest(unittest.TestCase):
             agents.VectorMazeEnv(1, randomize={"friction": (0.2, 20)})
         with self.assertRaisesRegex(ValueError, "start"):
             agents.VectorMazeEnv(1, randomize={"start": "anywhere"})
+        refused = [  # (arguments, what the message must name)
+            ({"num_envs": 2.5}, r"num_envs: expected a whole number, got 2\.5"),
+            ({"num_threads": "2"}, "num_threads: expected a whole number"),
+            ({"control_rate": "fast"}, "control_rate: expected a number, got 'fast'"),
+            # (a period of 2e8 steps would hold the caller for hours)
+            ({"control_rate": 1e-6}, "control_rate: 1e-06 Hz .* more than 10000000 steps"),
+            ({"max_episode_seconds": 0.005},
+             "max_episode_seconds: expected at least one control period"),
+            ({"max_episode_seconds": float("nan")}, "max_episode_seconds"),
+            ({"goal_bonus": float("nan")}, "goal_bonus: expected a finite number, got nan"),
+            ({"hole_penalty": float("inf")}, "hole_penalty: expected a finite number"),
+            ({"randomize": {"friction": 0.3}}, r"randomize: friction: expected \(low, high\)"),
+            ({"randomize": {"friction": (0.4, 0.2)}}, r"friction: .*low <= high, got \[0\.4, "),
+            # (each period's steps are fixed with the step; a whole-number key has no range)
+            ({"randomize": {"step": (0.001, 0.002)}}, "step: cannot be drawn per episode"),
+            ({"randomize": {"substeps": (1, 2)}}, "substeps: cannot be drawn from a range"),
+            ({"observation": {"delay_periods": 1.5}}, "observation: delay_periods: expected a "
+                                                      "whole number"),
+            ({"observation": {"delay_periods": 10**12}}, "delay_periods: 1000000000000 is out"),
+        ]
+        for arguments, message in refused:
+            with self.subTest(arguments=arguments), self.assertRaisesRegex(ValueError, message):
+                agents.VectorMazeEnv(**dict({"num_envs": 1}, **arguments))
         envs = agents.VectorMazeEnv(2)
         envs.reset()
-        with self.assertRaisesRegex(ValueError, "actions: expected shape"):
-            envs._env.step(np.zeros((3, 2)))
+        with self.assertRaisesRegex(ValueError, r"actions: expected shape \(2, 2\), got \(3, 2\)"):
+            envs.step(np.zeros((3, 2)))
+        with self.assertRaisesRegex(ValueError, "actions: expected numbers, got 'x'"):
+            envs.step("x")
+        with self.assertRaisesRegex(IndexError, "environment 2: expected 0 to 1"):
+            envs.simulated_time(2)
+        with self.assertRaisesRegex(IndexError, "environment -1: expected 0 to 1"):
+            envs.params(-1)
+        with self.assertRaisesRegex(ValueError, r"action: expected 2 numbers .*got array\(\[0"):
+            agents.MazeEnv().step(np.zeros(3))
+
+    def test_a_nan_action_is_refused_and_changes_nothing(self):
+        refused, twin = (agents.VectorMazeEnv(3, seed=4) for _ in range(2))
+        refused.reset(), twin.reset()
+        actions = np.array([[0.3, -0.2], [-0.5, 0.1], [0.2, 0.6]])
+        for envs in (refused, twin):
+            envs.step(actions)
+        with self.assertRaisesRegex(ValueError, r"actions\[2\]\[1\]: expected a number .*nan"):
+            refused.step(np.where([[0, 0], [0, 0], [0, 1]], np.nan, actions))
+        with self.assertRaisesRegex(ValueError, r"action: .*got array\(\[nan"):
+            agents.MazeEnv().step(np.array([np.nan, 0]))
+        # Every environment as if the refused call had not been made, bit for bit.
+        for a, b in zip(refused.step(actions)[:4], twin.step(actions)[:4]):
+            np.testing.assert_array_equal(a, b)
+        self.assertEqual(refused.simulated_time(0), twin.simulated_time(0))
+
+    def test_an_action_beyond_the_limits_is_clipped_to_them(self):
+        beyond, limits = (agents.VectorMazeEnv(2, seed=5) for _ in range(2))
+        beyond.reset(), limits.reset()
+        for _ in range(20):
+            obs = beyond.step(np.array([[np.inf, -np.inf], [7.0, -1.5]]))[0]
+            np.testing.assert_array_equal(obs, limits.step(np.array([[1, -1], [1, -1]]))[0])
+        tilt_limit = float(beyond.params(0)["tilt_limit"])
+        # (the target roll and pitch, the observation's 7th and 8th values)
+        np.testing.assert_allclose(obs[:, 6:8], [[tilt_limit, -tilt_limit]] * 2, rtol=1e-6)
+
+    def test_an_endless_episode_is_never_truncated(self):
+        envs = agents.VectorMazeEnv(1, max_episode_seconds=float("inf"))
+        envs.reset()
+        for _ in range(60 * 55 + 10):  # past the default limit's 3,300 periods, at rest
+            _, _, terminated, truncated, _ = envs.step(np.zeros((1, 2)))
+            self.assertFalse(terminated[0] or truncated[0])
+        self.assertGreater(envs.simulated_time(0), 60.1)
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 // reaches them through marble_maze.agents (python/marble_maze/agents.py).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -160,13 +161,26 @@ class VectorAgentEnv {
 
  private:
   class Pool;
-  /// Runs `work(first, last)` over ranges that cover the environments, spread over the threads.
-  void forEachSlice(const std::function<void(int, int)>& work);
+  /// What one thread's environments gave in a step, kept apart from the other threads'.
+  struct alignas(64) Results {
+    struct Row {
+      int env = 0;
+      AgentEnv::Outcome outcome;
+      std::array<float, AgentEnv::kObservationSize> obs{}, final_obs{};
+    };
+    std::vector<Row> rows;  // room for every environment
+    int count = 0;
+  };
+  /// Runs `work(thread, i)` for every environment i, spread over the threads (0 the caller's),
+  /// then `finished(thread)` in each thread that ran.
+  void forEachEnv(const std::function<void(int, int)>& work,
+                  const std::function<void(int)>& finished);
   /// Every environment back to a new episode, each first given to `reseed(env, i)`.
   void resetEach(float* obs, const std::function<void(AgentEnv&, int)>& reseed);
 
   std::vector<std::unique_ptr<AgentEnv>> envs_;
-  std::unique_ptr<Pool> pool_;  // the threads beside the caller's, waiting between calls
+  std::unique_ptr<Pool> pool_;    // the threads beside the caller's, waiting between calls
+  std::vector<Results> results_;  // one for each thread
 };
 
 }  // namespace marble_maze

@@ -268,9 +268,12 @@ class VectorAgentEnv::Pool {
     start_.notify_all();
     for (std::thread& t : threads_) t.join();
   }
-  /// `work(i, i + 1)` for every i below n, spread over the threads, the caller's among them.
-  void run(int n, const std::function<void(int, int)>& work) {
+  /// `work(thread, i)` for every i below n, spread over the threads (0 the caller's), then
+  /// `finished(thread)` in each.
+  void run(int n, const std::function<void(int, int)>& work,
+           const std::function<void(int)>& finished) {
     work_ = &work;
+    finished_ = &finished;
     n_ = n;
     for (int s = 0; s < slices(); ++s) slices_[static_cast<std::size_t>(s)].next.store(begin(s));
     pending_.store(static_cast<int>(threads_.size()));
@@ -295,8 +298,9 @@ class VectorAgentEnv::Pool {
       const int s = (own + k) % slices();
       std::atomic<int>& next = slices_[static_cast<std::size_t>(s)].next;
       const int end = begin(s + 1);
-      for (int i = next.fetch_add(1); i < end; i = next.fetch_add(1)) (*work_)(i, i + 1);
+      for (int i = next.fetch_add(1); i < end; i = next.fetch_add(1)) (*work_)(own, i);
     }
+    (*finished_)(own);
   }
 
   /// A call's work is some tens of microseconds, and waking a sleeping thread can take as long:
@@ -338,6 +342,7 @@ class VectorAgentEnv::Pool {
   std::mutex mutex_;
   std::condition_variable start_, done_;
   const std::function<void(int, int)>* work_ = nullptr;
+  const std::function<void(int)>* finished_ = nullptr;
   int n_ = 0;
   std::atomic<int> pending_{0};
   std::atomic<std::uint64_t> generation_{0};
@@ -357,6 +362,8 @@ VectorAgentEnv::VectorAgentEnv(int num_envs, const AgentEnvOptions& options, int
   // episodes whatever the split.)
   const int helpers = std::min(num_threads, num_envs) - 1;
   if (helpers > 0) pool_ = std::make_unique<Pool>(helpers);
+  results_.resize(static_cast<std::size_t>(helpers) + 1);
+  for (Results& r : results_) r.rows.resize(envs_.size());
 }
 
 VectorAgentEnv::~VectorAgentEnv() = default;
@@ -368,11 +375,14 @@ const AgentEnv& VectorAgentEnv::env(int i) const {
   return *envs_[static_cast<std::size_t>(i)];
 }
 
-void VectorAgentEnv::forEachSlice(const std::function<void(int, int)>& work) {
-  if (pool_)
-    pool_->run(size(), work);
-  else
-    work(0, size());
+void VectorAgentEnv::forEachEnv(const std::function<void(int, int)>& work,
+                                const std::function<void(int)>& finished) {
+  if (pool_) {
+    pool_->run(size(), work, finished);
+  } else {
+    for (int i = 0; i < size(); ++i) work(0, i);
+    finished(0);
+  }
 }
 
 namespace {
@@ -385,14 +395,14 @@ std::ptrdiff_t slot(int i, int size) {
 }  // namespace
 
 void VectorAgentEnv::resetEach(float* obs, const std::function<void(AgentEnv&, int)>& reseed) {
-  forEachSlice([&](int first, int last) {
-    for (int i = first; i < last; ++i) {
-      AgentEnv& env = *envs_[static_cast<std::size_t>(i)];
-      reseed(env, i);
-      env.reset();
-      env.observe(obs + slot(i, AgentEnv::kObservationSize));
-    }
-  });
+  forEachEnv(
+      [&](int, int i) {
+        AgentEnv& env = *envs_[static_cast<std::size_t>(i)];
+        reseed(env, i);
+        env.reset();
+        env.observe(obs + slot(i, AgentEnv::kObservationSize));
+      },
+      [](int) {});
 }
 
 void VectorAgentEnv::reset(float* obs, const std::uint64_t* seed) {
@@ -416,23 +426,38 @@ void VectorAgentEnv::step(const double* actions, float* obs, double* rewards,
   if (const int k = firstNaN(actions, size() * AgentEnv::kActionSize); k >= 0)
     throw ParamError("actions[" + std::to_string(k / AgentEnv::kActionSize) + "][" +
                      std::to_string(k % AgentEnv::kActionSize) + "]" + kNotANumber);
-  forEachSlice([&](int first, int last) {
-    for (int i = first; i < last; ++i) {
-      AgentEnv& env = *envs_[static_cast<std::size_t>(i)];
-      const AgentEnv::Outcome outcome = env.step(actions + slot(i, AgentEnv::kActionSize));
-      rewards[i] = outcome.reward;
-      terminated[i] = outcome.terminated;
-      truncated[i] = outcome.truncated;
-      float* o = obs + slot(i, AgentEnv::kObservationSize);
-      env.observe(o);
-      if (outcome.terminated || outcome.truncated) {
-        std::copy(o, o + AgentEnv::kObservationSize,
-                  final_obs + slot(i, AgentEnv::kObservationSize));
-        env.reset();
-        env.observe(o);
-      }
-    }
-  });
+  // Each thread keeps its environments' results apart, and writes them out once it has stepped
+  // them all: written one environment at a time, the flags of environments of both threads, on
+  // one cache line, would pass between the cores for every one.
+  forEachEnv(
+      [&](int thread, int i) {
+        AgentEnv& env = *envs_[static_cast<std::size_t>(i)];
+        Results& results = results_[static_cast<std::size_t>(thread)];
+        Results::Row& row = results.rows[static_cast<std::size_t>(results.count++)];
+        row.env = i;
+        row.outcome = env.step(actions + slot(i, AgentEnv::kActionSize));
+        env.observe(row.obs.data());
+        if (row.outcome.terminated || row.outcome.truncated) {
+          row.final_obs = row.obs;
+          env.reset();
+          env.observe(row.obs.data());
+        }
+      },
+      [&](int thread) {
+        Results& results = results_[static_cast<std::size_t>(thread)];
+        for (int k = 0; k < results.count; ++k) {
+          const Results::Row& row = results.rows[static_cast<std::size_t>(k)];
+          const int i = row.env;
+          rewards[i] = row.outcome.reward;
+          terminated[i] = row.outcome.terminated;
+          truncated[i] = row.outcome.truncated;
+          std::copy(row.obs.begin(), row.obs.end(), obs + slot(i, AgentEnv::kObservationSize));
+          if (row.outcome.terminated || row.outcome.truncated)
+            std::copy(row.final_obs.begin(), row.final_obs.end(),
+                      final_obs + slot(i, AgentEnv::kObservationSize));
+        }
+        results.count = 0;
+      });
 }
 
 }  // namespace marble_maze

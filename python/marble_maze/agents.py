@@ -17,10 +17,10 @@ velocity vx, vy; the board's roll, pitch; the target roll, pitch; the next waypo
 to the goal, dx, dy from the marble. The reward: progress_reward per metre nearer the goal along
 the route planner's path, -hole_penalty on a hole or off the board, +goal_bonus at the goal.
 An episode is terminated in a hole, off the board or at the goal, and truncated after
-max_episode_seconds (infinity: never). Finished episodes start again at once, as Gymnasium 0.29's vector
-environments do; their last observation is in info["final_observation"], their last info in
-info["final_info"] (the observation also in info["final_obs"], Gymnasium 1.x's same-step
-autoreset).
+max_episode_seconds (infinity: never). Finished episodes start again at once, as Gymnasium
+0.29's vector environments do; their last observation is in info["final_observation"], their
+last info in info["final_info"] (the observation also in info["final_obs"], Gymnasium 1.x's
+same-step autoreset).
 
 Every episode starts with the marble at rest and the board level. randomize varies episodes:
 {"start": "random"} puts the marble on a random open column with a route to the goal, and

@@ -144,10 +144,10 @@ def _seed(seed, name):
 
 
 def _whole(value, name):
-    """An integer argument as it is, or a ValueError naming it."""
-    if isinstance(value, (bool, np.bool_)):
-        raise ValueError("%s: expected a whole number, got %r" % (name, value))
+    """An integer argument as it is (not a bool), or a ValueError naming it."""
     try:
+        if isinstance(value, (bool, np.bool_)):
+            raise TypeError
         return operator.index(value)
     except TypeError:
         raise ValueError("%s: expected a whole number, got %r" % (name, value)) from None
